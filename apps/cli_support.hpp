@@ -1,0 +1,23 @@
+#pragma once
+// What every subcommand shares: exit codes and one-line error reporting.
+
+#include <string>
+
+namespace neopipe::apps {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailure = 1,      ///< bad input, failed processing
+  kExitUsage = 2,        ///< bad command line
+  kExitInterrupted = 130 ///< stopped by Ctrl-C after finishing the frames in flight
+};
+
+/// Prints "neopipe COMMAND: error: MESSAGE" as one line on stderr (newlines in MESSAGE become spaces).
+void print_error(const std::string& command, const std::string& message);
+
+/// Thrown for a bad command line found after parsing (conflicting options and such).
+struct UsageError {
+  std::string message;
+};
+
+}  // namespace neopipe::apps

@@ -1,0 +1,54 @@
+// neopipe: one binary, one subcommand per job.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <string>
+
+#include "apps/bench_command.hpp"
+#include "apps/cli_support.hpp"
+#include "apps/run_command.hpp"
+
+namespace {
+using namespace neopipe::apps;
+
+int guarded(const std::string& name, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    print_error(name, e.message + " (see neopipe " + name + " --help)");
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    print_error(name, e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("neopipe: a PIPE-style real-time image pipeline engine", "neopipe");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "neopipe 0.1.0");
+  RunArgs run_args;
+  BenchArgs bench_args;
+  CLI::App* run = add_run_command(app, run_args);
+  CLI::App* bench = add_bench_command(app, bench_args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const auto subs = app.get_subcommands();
+    print_error(subs.empty() ? std::string("") : subs.front()->get_name(),
+                std::string(e.what()) + " (see neopipe" + (subs.empty() ? "" : " " + subs.front()->get_name()) + " --help)");
+    return kExitUsage;
+  }
+  if (run->parsed()) return guarded("run", [&] { return run_command(run_args); });
+  if (bench->parsed()) return guarded("bench", [&] { return bench_command(bench_args); });
+  return kExitUsage;
+}

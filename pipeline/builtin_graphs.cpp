@@ -1,0 +1,23 @@
+#include "pipeline/builtin_graphs.hpp"
+
+#include <string>
+
+namespace neopipe::pipeline {
+
+GraphSpec blob_graph(const BlobGraphOptions& o) {
+  GraphBuilder b("<built-in blob graph>");
+  const bool bgr = o.source == PortType::bgr8;
+  b.node("src", "source", bgr ? "{format: bgr}" : "{format: gray}");
+  std::string gray = "src";
+  if (bgr) {
+    b.node("gray", "gray").connect("src", "gray.in");
+    gray = "gray";
+  }
+  b.node("binary", "threshold", "{value: " + (o.threshold ? std::to_string(*o.threshold) : std::string("otsu")) + "}");
+  b.node("blobs", "blobs", "{threshold: 0, connectivity: " + std::to_string(o.connectivity) + "}");
+  b.connect(gray, "binary.in").connect("binary", "blobs.in").connect(gray, "blobs.weights");
+  b.output("blobs");
+  return b.spec();
+}
+
+}  // namespace neopipe::pipeline

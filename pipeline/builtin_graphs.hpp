@@ -1,0 +1,21 @@
+#pragma once
+// Graphs neopipe knows without a spec file.
+
+#include <optional>
+
+#include "pipeline/graph_spec.hpp"
+#include "pipeline/value.hpp"
+
+namespace neopipe::pipeline {
+
+struct BlobGraphOptions {
+  std::optional<int> threshold;  ///< fixed T (value > T is foreground); none = Otsu per frame
+  int connectivity = 8;          ///< 4 or 8
+  PortType source = PortType::bgr8;  ///< bgr8 frames go through BT.601 gray first
+};
+
+/// source -> gray -> threshold -> blobs, the blobs weighted by the gray image. Its output is the
+/// blob table "blobs". examples/blobs.yaml is the same graph as a spec file.
+GraphSpec blob_graph(const BlobGraphOptions& options = {});
+
+}  // namespace neopipe::pipeline

@@ -1,0 +1,66 @@
+#include "pipeline/io/blob_table_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <iterator>
+#include <stdexcept>
+
+namespace neopipe::pipeline::io {
+
+std::optional<TableFormat> table_format_for(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".csv") return TableFormat::csv;
+  if (ext == ".jsonl" || ext == ".ndjson") return TableFormat::jsonl;
+  return std::nullopt;
+}
+
+BlobTableWriter::BlobTableWriter(std::ostream& out, TableOptions options)
+    : out_(&out), options_(options), path_("<stdout>") {
+  header();
+}
+
+BlobTableWriter::BlobTableWriter(const std::string& path, TableOptions options)
+    : file_(std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc)),
+      out_(file_.get()),
+      options_(options),
+      path_(path) {
+  if (!*file_) throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
+  header();
+}
+
+void BlobTableWriter::header() {
+  if (options_.format != TableFormat::csv) return;
+  *out_ << "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy" << (options_.moments ? ",mu20,mu11,mu02" : "") << '\n';
+  out_->flush();
+}
+
+void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
+  buffer_.clear();
+  auto it = std::back_inserter(buffer_);
+  for (size_t i = 0; i < blobs.size(); ++i) {
+    const auto& b = blobs[i];
+    if (options_.format == TableFormat::csv) {
+      // {} prints a double in its shortest round-trip form.
+      fmt::format_to(it, "{},{},{},{},{},{},{},{},{},{},{}", frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width,
+                     b.height, b.wcx, b.wcy);
+      if (options_.moments) fmt::format_to(it, ",{},{},{}", b.mu20, b.mu11, b.mu02);
+      buffer_ += '\n';
+    } else {
+      fmt::format_to(it,
+                     "{{\"frame\":{},\"blob\":{},\"area\":{},\"cx\":{},\"cy\":{},\"x0\":{},\"y0\":{},\"w\":{},\"h\":{},"
+                     "\"wcx\":{},\"wcy\":{}",
+                     frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy);
+      if (options_.moments) fmt::format_to(it, ",\"mu20\":{},\"mu11\":{},\"mu02\":{}", b.mu20, b.mu11, b.mu02);
+      buffer_ += "}\n";
+    }
+  }
+  out_->write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  out_->flush();
+  if (!*out_) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+  rows_ += static_cast<std::int64_t>(blobs.size());
+}
+
+}  // namespace neopipe::pipeline::io

@@ -1,0 +1,33 @@
+#include "pipeline/io/image_sequence_source.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "pipeline/io/files.hpp"
+
+namespace neopipe::pipeline::io {
+
+ImageSequenceSource::ImageSequenceSource(std::vector<std::string> files, ColorFormat format, std::string description)
+    : files_(std::move(files)), format_(format), description_(std::move(description)) {}
+
+std::optional<SourceFrame> ImageSequenceSource::next() {
+  if (pos_ >= files_.size()) return std::nullopt;
+  const std::string& path = files_[pos_];
+  require_readable(path);
+  cv::Mat img = cv::imread(path, format_ == ColorFormat::bgr ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
+  if (img.empty()) throw SourceError(path + ": not an image OpenCV can read (unknown format or corrupt file)");
+  if (first_size_.area() == 0) {
+    first_size_ = img.size();
+  } else if (img.size() != first_size_) {
+    throw SourceError(path + ": the image is " + size_text(img.size()) + " but the sequence started at " +
+                      size_text(first_size_) + " (" + files_.front() + ")");
+  }
+  return SourceFrame{static_cast<std::int64_t>(pos_++), std::move(img)};
+}
+
+bool ImageSequenceSource::skip() {
+  if (pos_ >= files_.size()) return false;
+  ++pos_;
+  return true;
+}
+
+}  // namespace neopipe::pipeline::io

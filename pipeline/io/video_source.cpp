@@ -1,0 +1,71 @@
+#include "pipeline/io/video_source.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+
+#include "pipeline/io/files.hpp"
+
+namespace neopipe::pipeline::io {
+
+VideoSource::VideoSource(std::string path, ColorFormat format) : path_(std::move(path)), format_(format) {
+  require_readable(path_);
+  if (!cap_.open(path_, cv::CAP_FFMPEG) || !cap_.isOpened()) {
+    throw SourceError(path_ + ": neither an image nor a video OpenCV can read");
+  }
+  fps_ = cap_.get(cv::CAP_PROP_FPS);
+  if (!std::isfinite(fps_) || fps_ < 0) fps_ = 0;
+  const double n = cap_.get(cv::CAP_PROP_FRAME_COUNT);
+  declared_frames_ = std::isfinite(n) && n > 0 ? static_cast<std::int64_t>(n) : 0;
+  if (!cap_.read(pending_) || pending_.empty()) throw SourceError(path_ + ": the video has no frames");
+  size_ = pending_.size();
+}
+
+std::optional<std::int64_t> VideoSource::frame_count() const {
+  if (declared_frames_ > 0) return declared_frames_;
+  return std::nullopt;
+}
+
+// Moves to the next frame; with `frame`, decodes it too. False at a clean end; throws if the
+// stream stops short of the frame count its container declares or changes size.
+bool VideoSource::advance(cv::Mat* frame) {
+  if (ended_) return false;
+  cv::Mat raw;
+  if (!pending_.empty()) {
+    raw = std::move(pending_);
+    pending_ = cv::Mat();
+  } else if (frame != nullptr ? !cap_.read(raw) || raw.empty() : !cap_.grab()) {
+    ended_ = true;
+    if (declared_frames_ > 0 && pos_ < declared_frames_) {
+      throw SourceError(path_ + ": decoding stopped at frame " + std::to_string(pos_) + " of " +
+                        std::to_string(declared_frames_) + " (truncated or corrupt video)");
+    }
+    return false;
+  }
+  if (frame != nullptr) {
+    if (raw.size() != size_) {
+      throw SourceError(path_ + ": frame " + std::to_string(pos_) + " is " + size_text(raw.size()) +
+                        " but the video started at " + size_text(size_));
+    }
+    if (format_ == ColorFormat::gray) {
+      cv::cvtColor(raw, *frame, raw.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+    } else if (raw.channels() == 1) {
+      cv::cvtColor(raw, *frame, cv::COLOR_GRAY2BGR);
+    } else {
+      *frame = std::move(raw);
+    }
+  }
+  ++pos_;
+  return true;
+}
+
+std::optional<SourceFrame> VideoSource::next() {
+  SourceFrame f;
+  f.index = pos_;
+  if (!advance(&f.image)) return std::nullopt;
+  return f;
+}
+
+bool VideoSource::skip() { return advance(nullptr); }
+
+}  // namespace neopipe::pipeline::io

@@ -1,0 +1,101 @@
+#pragma once
+// A node is a configured kernel with typed ports: the unit the scheduler runs. The algorithm lives
+// in kernels/; a node only binds ports and parameters to it and says how it may be cut up (its
+// footprint). The scheduler decides the rest: which stripes, on which threads, which frames at once.
+
+#include <opencv2/core/mat.hpp>
+
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "kernels/types.hpp"
+#include "pipeline/value.hpp"
+
+namespace neopipe::pipeline {
+
+struct PortDecl {
+  std::string name;
+  PortType type;
+  bool optional = false;  ///< inputs only: may be left unconnected
+};
+
+/// A node's view of one frame: its inputs (computed) and outputs (to fill).
+class NodeIO {
+ public:
+  NodeIO(std::span<const Value* const> inputs, std::span<Value* const> outputs,
+         std::span<const PortDecl> output_decls, cv::Size frame_size)
+      : in_(inputs), out_(outputs), out_decls_(output_decls), size_(frame_size) {}
+
+  cv::Size frame_size() const { return size_; }
+  bool connected(size_t input) const { return in_[input] != nullptr; }
+  const Value& in(size_t input) const { return *in_[input]; }
+  const cv::Mat& image(size_t input) const { return std::get<cv::Mat>(*in_[input]); }
+  template <class T>
+  const T& get(size_t input) const {
+    return std::get<T>(*in_[input]);
+  }
+
+  /// Output image `output`, allocated at the frame size with the port's pixel type.
+  cv::Mat& out_image(size_t output) {
+    Value& v = *out_[output];
+    if (!std::holds_alternative<cv::Mat>(v)) v = cv::Mat();
+    auto& m = std::get<cv::Mat>(v);
+    m.create(size_, cv_type(out_decls_[output].type));
+    return m;
+  }
+  /// Output `output` as a T (a Histogram or a BlobList), kept from frame to frame for reuse.
+  template <class T>
+  T& out(size_t output) {
+    Value& v = *out_[output];
+    if (!std::holds_alternative<T>(v)) v = T{};
+    return std::get<T>(v);
+  }
+  /// Sets output `output` to a value that is not written in place (e.g. an image read-only shared
+  /// with someone else).
+  void set_out(size_t output, Value v) { *out_[output] = std::move(v); }
+
+ private:
+  std::span<const Value* const> in_;
+  std::span<Value* const> out_;
+  std::span<const PortDecl> out_decls_;
+  cv::Size size_;
+};
+
+class Node {
+ public:
+  Node(std::vector<PortDecl> inputs, std::vector<PortDecl> outputs, kernels::Footprint footprint)
+      : inputs_(std::move(inputs)), outputs_(std::move(outputs)), footprint_(footprint) {}
+  virtual ~Node() = default;
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  const std::vector<PortDecl>& inputs() const { return inputs_; }
+  const std::vector<PortDecl>& outputs() const { return outputs_; }
+  kernels::Footprint footprint() const { return footprint_; }
+
+  /// Once, before the first frame. Throws std::invalid_argument if the node cannot run at this
+  /// frame size (e.g. a constant image of another size).
+  virtual void configure(cv::Size frame_size) { (void)frame_size; }
+
+  /// Once per frame, before any rows. The default allocates the image outputs. Nodes with a frame
+  /// footprint do all their work here; point and 3x3 nodes may do whole-frame preparation (Otsu's
+  /// histogram). A node runs one frame at a time, in frame order, so per-frame members set here are
+  /// safe to read from run_rows.
+  virtual void begin_frame(NodeIO& io);
+
+  /// Computes output rows [rows.start, rows.end). The scheduler calls it for stripes that cover the
+  /// frame, possibly at once on several threads: write only these rows.
+  virtual void run_rows(NodeIO& io, cv::Range rows) const {
+    (void)io;
+    (void)rows;
+  }
+
+ private:
+  std::vector<PortDecl> inputs_;
+  std::vector<PortDecl> outputs_;
+  kernels::Footprint footprint_;
+};
+
+}  // namespace neopipe::pipeline

@@ -1,0 +1,61 @@
+// Iconic-to-symbolic nodes: whole frames in, tables out.
+
+#include "kernels/blobs.hpp"
+#include "kernels/histogram.hpp"
+#include "kernels/threshold.hpp"
+#include "pipeline/nodes/nodes.hpp"
+
+namespace neopipe::pipeline::nodes {
+namespace {
+
+using kernels::Footprint;
+
+class HistogramNode final : public Node {
+ public:
+  HistogramNode() : Node({{"in", PortType::gray8}}, {{"out", PortType::histogram}}, Footprint::frame) {}
+  void begin_frame(NodeIO& io) override {
+    auto& h = io.out<Histogram>(0);
+    h.fill(0);
+    kernels::accumulate_histogram(io.image(0), h);
+  }
+};
+
+class BlobsNode final : public Node {
+ public:
+  BlobsNode(kernels::BlobParams params, bool otsu)
+      : Node({{"in", PortType::gray8}, {"weights", PortType::gray8, true}}, {{"out", PortType::blobs}},
+             Footprint::frame),
+        params_(params),
+        otsu_(otsu) {}
+  void begin_frame(NodeIO& io) override {
+    const cv::Mat& in = io.image(0);
+    kernels::BlobParams p = params_;
+    if (otsu_) p.threshold = kernels::otsu_threshold(kernels::histogram(in));
+    io.out<BlobList>(0) = kernels::extract_blobs(in, p, io.connected(1) ? io.image(1) : cv::Mat());
+  }
+
+ private:
+  kernels::BlobParams params_;
+  bool otsu_;
+};
+
+}  // namespace
+
+void register_symbolic_nodes(KernelRegistry& r) {
+  r.add({"histogram", "256-bin histogram of a gray8 image",
+         [](NodeContext&) { return std::make_unique<HistogramNode>(); }});
+  r.add({"blobs",
+         "connected components of in > threshold with area, box, centroid, weighted centroid (weights input, default "
+         "in) and central moments; params: threshold (-1..255 or otsu, default 0), connectivity (4 | 8, default 8)",
+         [](NodeContext& c) {
+           kernels::BlobParams p;
+           const bool otsu = c.params.get_string("threshold", "0") == "otsu";
+           p.threshold = otsu ? 0 : c.params.get_int("threshold", 0, -1, 255);
+           const int conn = c.params.get_int("connectivity", 8, 4, 8);
+           if (conn != 4 && conn != 8) c.params.fail("connectivity", "must be 4 or 8");
+           p.connectivity = conn == 4 ? kernels::Connectivity::four : kernels::Connectivity::eight;
+           return std::make_unique<BlobsNode>(p, otsu);
+         }});
+}
+
+}  // namespace neopipe::pipeline::nodes
