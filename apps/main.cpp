@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <string>
 
@@ -34,6 +36,16 @@ int main(int argc, char** argv) {
   BenchArgs bench_args;
   CLI::App* run = add_run_command(app, run_args);
   CLI::App* bench = add_bench_command(app, bench_args);
+  // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
+  // for them by setting the variable.
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
+  if (argc > 1 && argv[1][0] != '-') {
+    const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
+    if (known.empty()) {
+      print_error("", std::string("unknown command '") + argv[1] + "' (commands: run, bench; see neopipe --help)");
+      return kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -73,6 +73,7 @@ void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uin
 
 void bool3x3(const cv::Mat& src, cv::Mat& dst, const Bool3x3& k, cv::Range rows) {
   detail::require_type(src, CV_8UC1, "bool3x3 input");
+  detail::require_distinct(src, dst, "bool3x3");
   const cv::Range r = detail::output_rows(dst, src.size(), CV_8UC1, rows);
   const Border border{k.border.mode, k.border.value != 0 ? 255 : 0};
   const detail::NeighbourRows<std::uint8_t> nrows(src, border);

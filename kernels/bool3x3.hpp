@@ -57,7 +57,7 @@ struct Bool3x3 {
 void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
                  std::uint8_t* out, int width, const Bool3x3& k) noexcept;
 
-/// src and dst CV_8UC1.
+/// src and dst CV_8UC1; dst must not share memory with src (KernelError).
 void bool3x3(const cv::Mat& src, cv::Mat& dst, const Bool3x3& k, cv::Range rows = cv::Range::all());
 
 }  // namespace neopipe::kernels

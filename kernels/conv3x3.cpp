@@ -52,7 +52,7 @@ void validate(const Conv3x3& k) {
     detail::require(std::abs(w) <= 65535, "conv3x3: weights must lie in -65535..65535");
   }
   detail::require(k.shift >= 0 && k.shift <= 16, "conv3x3: shift must lie in 0..16");
-  detail::require(k.border.value >= 0 && k.border.value <= 255,
+  detail::require(k.border.mode != BorderMode::constant || (k.border.value >= 0 && k.border.value <= 255),
                   "conv3x3: the constant border value must lie in 0..255");
 }
 
@@ -68,6 +68,7 @@ void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uin
 
 void conv3x3(const cv::Mat& src, cv::Mat& dst, const Conv3x3& k, int dst_type, cv::Range rows) {
   detail::require_type(src, CV_8UC1, "conv3x3 input");
+  detail::require_distinct(src, dst, "conv3x3");
   validate(k);
   if (rows != cv::Range::all() && !dst.empty()) dst_type = dst.type();
   detail::require(dst_type == CV_8UC1 || dst_type == CV_16SC1,

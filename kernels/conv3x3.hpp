@@ -31,6 +31,7 @@ void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uin
                  std::int16_t* out, int width, const Conv3x3& k) noexcept;
 
 /// src CV_8UC1; dst CV_8UC1 (saturated to 0..255) or CV_16SC1 (saturated to -32768..32767).
+/// dst must not share memory with src (KernelError).
 /// `dst_type` picks the output when dst is allocated here (whole-frame calls).
 void conv3x3(const cv::Mat& src, cv::Mat& dst, const Conv3x3& k, int dst_type = CV_8UC1,
              cv::Range rows = cv::Range::all());

@@ -20,6 +20,12 @@ void require_same_size(const cv::Mat& a, const cv::Mat& b, const char* what) {
   if (a.size() != b.size()) throw KernelError(std::string(what) + ": images differ in size");
 }
 
+void require_distinct(const cv::Mat& src, const cv::Mat& dst, const char* what) {
+  if (src.empty() || dst.empty()) return;
+  const bool overlap = src.datastart < dst.dataend && dst.datastart < src.dataend;
+  if (overlap) throw KernelError(std::string(what) + ": the output must not share memory with the input");
+}
+
 cv::Range output_rows(cv::Mat& dst, cv::Size size, int type, cv::Range rows) {
   if (rows == cv::Range::all()) {
     dst.create(size, type);

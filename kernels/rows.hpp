@@ -16,6 +16,9 @@ namespace neopipe::kernels::detail {
 void require(bool ok, const char* what);
 void require_type(const cv::Mat& m, int type, const char* what);
 void require_same_size(const cv::Mat& a, const cv::Mat& b, const char* what);
+/// Neighbourhood kernels read rows they have already written if the output shares memory with
+/// the input, so that is refused.
+void require_distinct(const cv::Mat& src, const cv::Mat& dst, const char* what);
 /// The rows to compute, clamped to the image. With `rows == cv::Range::all()` the output is
 /// (re)allocated as needed, so whole-frame calls are convenient; with a row range (a stripe), the
 /// output must already have `size` and `type`, because other stripes share it.

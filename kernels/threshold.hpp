@@ -20,7 +20,8 @@ void threshold(const cv::Mat& src, cv::Mat& dst, int t, std::uint8_t high = 255,
                cv::Range rows = cv::Range::all());
 
 /// Otsu's threshold from a histogram: the T maximising the between-class variance of {<= T} and
-/// {> T}. Computed exactly as cv::threshold(THRESH_OTSU) does, so both choose the same T.
+/// {> T}. Computed exactly as cv::threshold(THRESH_OTSU) does, so both choose the same T. An empty
+/// histogram, or one with a single occupied bin, gives 0 (as OpenCV does for a constant image).
 int otsu_threshold(const Histogram& hist);
 
 }  // namespace neopipe::kernels

@@ -1,6 +1,7 @@
 #include "pipeline/compiled_graph.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -42,6 +43,15 @@ struct Resolver {
     return impls[static_cast<size_t>(a.node)]->outputs()[static_cast<size_t>(a.port)].type;
   }
 };
+
+// The constants a delayed input of this type can start from.
+std::pair<int, int> fill_range(PortType t) {
+  switch (t) {
+    case PortType::s16: return {-32768, 32767};
+    case PortType::histogram: return {0, std::numeric_limits<int>::max()};
+    default: return {0, 255};
+  }
+}
 
 // One dependency edge of the first frame: consumer waits for producer (non-delayed inputs and
 // delayed inputs' initial ports). A cycle among these is an error.
@@ -151,6 +161,12 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
       if (b.delayed) {
         has_delays = true;
         if (const auto* fill = std::get_if<int>(&b.initial)) {
+          const auto [lo, hi] = fill_range(d->type);
+          if (*fill < lo || *fill > hi) {
+            throw GraphError(b.where, "the initial value of input '" + b.input + "' of node '" + n.name + "' is " +
+                                          std::to_string(*fill) + ", outside the " + std::string(to_string(d->type)) +
+                                          " range " + std::to_string(lo) + ".." + std::to_string(hi));
+          }
           in.initial_fill = *fill;
         } else {
           const PortRef& init = std::get<PortRef>(b.initial);
@@ -162,6 +178,7 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
                                              init.str() + "' is " + std::string(to_string(it)));
           }
           deps.push_back({in.initial_from.node, static_cast<int>(i), init.where});
+          consumed.emplace(in.initial_from.node, in.initial_from.port);
         }
       } else {
         deps.push_back({in.from.node, static_cast<int>(i), b.from.where});

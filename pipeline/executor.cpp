@@ -205,15 +205,23 @@ class Executor::Impl {
       if (pending == 0) ready.push_back({seq, static_cast<int>(i)});
     }
     if (s.remaining == 0) complete(seq);
-    spawn(lk, ready);
+    ready = claim(std::move(ready));
+    lk.unlock();
+    enqueue(ready);
+    lk.lock();
   }
 
-  void spawn(std::unique_lock<std::mutex>& lk, const std::vector<Task>& ready) {
-    if (ready.empty() || error_) return;
+  // Counts `ready` as running. After an error only frames before the failed one go on, so that
+  // every frame submitted before it is still delivered. Caller holds the lock.
+  std::vector<Task> claim(std::vector<Task> ready) {
+    if (error_) std::erase_if(ready, [&](const Task& t) { return t.seq >= error_seq_; });
     running_ += static_cast<int>(ready.size());
-    lk.unlock();
-    for (const Task& t : ready) arena_.enqueue([this, t] { run(t); });
-    lk.lock();
+    return ready;
+  }
+
+  // Hands claimed tasks to the workers. Called without the lock.
+  void enqueue(const std::vector<Task>& tasks) {
+    for (const Task& t : tasks) arena_.enqueue([this, t] { run(t); });
   }
 
   void run(Task t) {
@@ -247,13 +255,21 @@ class Executor::Impl {
     } catch (...) {
       err = std::make_exception_ptr(NodeError("frame " + std::to_string(s.index) + ", node '" + node.name + "' failed"));
     }
-    std::unique_lock lk(m_);
-    --running_;
-    if (err) {
-      if (!error_) error_ = err;
-    } else {
-      spawn(lk, node_done(t));
+    // This task stays counted in running_ until its very last touch of the executor, so the
+    // executor (waiting for running_ == 0 in its destructor) cannot vanish while the task still
+    // enqueues its successors.
+    std::vector<Task> ready;
+    {
+      const std::lock_guard lk(m_);
+      if (err) {
+        record_error(err, t.seq);
+      } else {
+        ready = claim(node_done(t));
+      }
     }
+    enqueue(ready);
+    const std::lock_guard lk(m_);
+    --running_;
     cv_.notify_all();
   }
 
@@ -264,8 +280,10 @@ class Executor::Impl {
       node.run_rows(io, {0, h});
       return;
     }
+    // Round the stripe height up, then count the stripes again, so every stripe lies in the frame.
     const int rows = (h + stripes - 1) / stripes;
-    tbb::parallel_for(0, stripes, [&](int k) { node.run_rows(io, {k * rows, std::min(h, (k + 1) * rows)}); });
+    const int count = (h + rows - 1) / rows;
+    tbb::parallel_for(0, count, [&](int k) { node.run_rows(io, {k * rows, std::min(h, (k + 1) * rows)}); });
   }
 
   // Marks (seq, node) done and returns the tasks it made ready. Caller holds the lock.
@@ -305,9 +323,18 @@ class Executor::Impl {
     }
   }
 
-  // Hands finished results to the handler in order, without holding the lock during the call.
+  // Keeps the error of the earliest frame: that is the one a sequential run would have hit first.
+  void record_error(std::exception_ptr err, std::int64_t seq) {
+    if (!error_ || seq < error_seq_) {
+      error_ = std::move(err);
+      error_seq_ = seq;
+    }
+  }
+
+  // Hands finished results to the handler in order, without holding the lock during the call. A
+  // handler that throws receives nothing more: its error stops the run like a node's.
   void deliver(std::unique_lock<std::mutex>& lk) {
-    for (;;) {
+    while (!handler_failed_) {
       const auto it = finished_.find(delivered_);
       if (it == finished_.end()) return;
       FrameResult r = std::move(it->second);
@@ -318,6 +345,8 @@ class Executor::Impl {
         on_result_(std::move(r));
       } catch (...) {
         lk.lock();
+        handler_failed_ = true;
+        record_error(std::current_exception(), delivered_ - 1);
         throw;
       }
       lk.lock();
@@ -354,6 +383,8 @@ class Executor::Impl {
   std::map<std::int64_t, FrameResult> finished_;
   int running_ = 0;
   std::exception_ptr error_;
+  std::int64_t error_seq_ = 0;  // the frame error_ came from
+  bool handler_failed_ = false;
 };
 
 Executor::Executor(CompiledGraph graph, ExecutorOptions options, ResultHandler on_result)

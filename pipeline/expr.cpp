@@ -1,6 +1,7 @@
 #include "pipeline/expr.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -161,11 +162,17 @@ class Parser {
     }
     const char c = s_[pos_];
     if (std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.') {
-      const std::string rest(s_.substr(pos_));
-      char* end = nullptr;
-      const double value = std::strtod(rest.c_str(), &end);
-      if (end == rest.c_str()) fail("bad number");
-      pos_ += static_cast<size_t>(end - rest.c_str());
+      // Decimal only (from_chars, unlike strtod, takes no hex, "inf" or locale).
+      double value = 0;
+      const char* first = s_.data() + pos_;
+      const auto [end, ec] = std::from_chars(first, s_.data() + s_.size(), value, std::chars_format::general);
+      if (ec != std::errc() || end == first) fail("bad number");
+      const size_t start = pos_;
+      pos_ += static_cast<size_t>(end - first);
+      if (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) != 0 || s_[pos_] == '_')) {
+        pos_ = start;
+        fail("bad number");
+      }
       return make([value](auto) { return value; });
     }
     if (std::isalpha(static_cast<unsigned char>(c)) != 0 || c == '_') {

@@ -19,7 +19,9 @@ ParamReader::ParamReader(YAML::Node params, SourceLocation node_where, std::stri
 
 YAML::Node ParamReader::value(const std::string& name) {
   known_.insert(name);
-  if (!params_ || !params_.IsMap()) return YAML::Node();
+  // A default-constructed YAML::Node is a defined null, which would read as "given"; absent must
+  // be undefined.
+  if (!params_ || !params_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
   const YAML::Node& p = params_;
   return p[name];
 }

@@ -1,5 +1,6 @@
 #include "pipeline/stream_runner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -23,6 +24,7 @@ void read_paced(io::FrameSource& source, Executor& ex, const StreamOptions& o, R
   const double rate = o.fps > 0 ? o.fps : (source.fps() > 0 ? source.fps() : 30.0);
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
   const auto start = Clock::now();
+  stats.realtime = true;
   for (std::int64_t i = 0;; ++i) {
     if (stopped(o)) {
       stats.interrupted = true;
@@ -33,15 +35,11 @@ void read_paced(io::FrameSource& source, Executor& ex, const StreamOptions& o, R
       ex.poll();
       std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(2)));
     }
-    if (Clock::now() >= due + period) {
-      if (!source.skip()) return;
-      ++stats.frames_read;
-      ++stats.frames_dropped;
-      continue;
-    }
     auto f = source.next();
     if (!f) return;
     ++stats.frames_read;
+    stats.max_reader_lag_s =
+        std::max(stats.max_reader_lag_s, std::chrono::duration<double>(Clock::now() - due).count());
     if (!ex.try_submit(f->index, f->image)) ++stats.frames_dropped;
   }
 }

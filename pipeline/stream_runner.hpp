@@ -2,10 +2,12 @@
 // Drives a frame source through a graph: batch mode (every frame, in order) or real-time mode
 // (paced to the source's frame rate, dropping frames that find the pipeline full).
 //
-// Real-time drop policy: frame i "arrives" at start + i / fps. On arrival it enters the pipeline if
-// one of its `frames_in_flight` slots is free, and is dropped otherwise: frames are never queued, so
-// latency and memory stay bounded and the newest frames win. If reading itself falls a whole frame
-// interval behind, the late frame is passed over without colour conversion and counted as dropped.
+// Real-time drop policy: frame i "arrives" at start + i / fps and is read then (or at once, if
+// reading is already late). It enters the pipeline if one of its `frames_in_flight` slots is free,
+// and is dropped otherwise: frames are never queued, so latency and memory stay bounded and the
+// newest frames win. Drops measure processing falling behind; a source that decodes slower than its
+// own frame rate is not dropped from but falls behind the clock, which RunStats::max_reader_lag_s
+// reports.
 
 #include <atomic>
 #include <functional>

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -11,7 +13,8 @@
 namespace neopipe::pipeline::io {
 
 std::optional<TableFormat> table_format_for(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   if (ext == ".csv") return TableFormat::csv;
   if (ext == ".jsonl" || ext == ".ndjson") return TableFormat::jsonl;
   return std::nullopt;

@@ -32,9 +32,6 @@ class FrameSource {
   virtual ~FrameSource() = default;
   /// The next frame, or nullopt after the last. Throws SourceError.
   virtual std::optional<SourceFrame> next() = 0;
-  /// Passes over the next frame as cheaply as the format allows (no colour conversion); false at
-  /// the end. Throws SourceError.
-  virtual bool skip() = 0;
   /// For messages: the file, or "N images from DIR".
   virtual std::string description() const = 0;
   /// Frames per second of a video; 0 when the source has no rate (images).

@@ -1,6 +1,7 @@
 #include "pipeline/io/image_sequence_source.hpp"
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "pipeline/io/files.hpp"
 
@@ -13,8 +14,11 @@ std::optional<SourceFrame> ImageSequenceSource::next() {
   if (pos_ >= files_.size()) return std::nullopt;
   const std::string& path = files_[pos_];
   require_readable(path);
-  cv::Mat img = cv::imread(path, format_ == ColorFormat::bgr ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
+  // Always decoded to BGR: IMREAD_GRAYSCALE would use each codec's own luma arithmetic, and gray
+  // frames must be BT.601 exactly as cv::cvtColor (and the video source, and the gray kernel) make them.
+  cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
   if (img.empty()) throw SourceError(path + ": not an image OpenCV can read (unknown format or corrupt file)");
+  if (format_ == ColorFormat::gray) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (first_size_.area() == 0) {
     first_size_ = img.size();
   } else if (img.size() != first_size_) {
@@ -22,12 +26,6 @@ std::optional<SourceFrame> ImageSequenceSource::next() {
                       size_text(first_size_) + " (" + files_.front() + ")");
   }
   return SourceFrame{static_cast<std::int64_t>(pos_++), std::move(img)};
-}
-
-bool ImageSequenceSource::skip() {
-  if (pos_ >= files_.size()) return false;
-  ++pos_;
-  return true;
 }
 
 }  // namespace neopipe::pipeline::io

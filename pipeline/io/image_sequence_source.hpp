@@ -12,7 +12,6 @@ class ImageSequenceSource final : public FrameSource {
  public:
   ImageSequenceSource(std::vector<std::string> files, ColorFormat format, std::string description);
   std::optional<SourceFrame> next() override;
-  bool skip() override;
   std::string description() const override { return description_; }
   double fps() const override { return 0; }
   std::optional<std::int64_t> frame_count() const override { return static_cast<std::int64_t>(files_.size()); }

@@ -45,6 +45,8 @@ std::unique_ptr<FrameSource> open_frame_source(const std::vector<std::string>& i
     // haveImageReader looks at the file's signature, not its name.
     if (cv::haveImageReader(in)) {
       images.push_back(in);
+    } else if (has_image_extension(in)) {
+      throw SourceError(in + ": not an image OpenCV can read (unknown format or corrupt file)");
     } else {
       videos.push_back(in);
     }

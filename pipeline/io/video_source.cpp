@@ -26,46 +26,35 @@ std::optional<std::int64_t> VideoSource::frame_count() const {
   return std::nullopt;
 }
 
-// Moves to the next frame; with `frame`, decodes it too. False at a clean end; throws if the
-// stream stops short of the frame count its container declares or changes size.
-bool VideoSource::advance(cv::Mat* frame) {
-  if (ended_) return false;
+// Throws if the stream stops short of the frame count its container declares, or changes size.
+std::optional<SourceFrame> VideoSource::next() {
+  if (ended_) return std::nullopt;
   cv::Mat raw;
   if (!pending_.empty()) {
     raw = std::move(pending_);
     pending_ = cv::Mat();
-  } else if (frame != nullptr ? !cap_.read(raw) || raw.empty() : !cap_.grab()) {
+  } else if (!cap_.read(raw) || raw.empty()) {
     ended_ = true;
     if (declared_frames_ > 0 && pos_ < declared_frames_) {
       throw SourceError(path_ + ": decoding stopped at frame " + std::to_string(pos_) + " of " +
                         std::to_string(declared_frames_) + " (truncated or corrupt video)");
     }
-    return false;
+    return std::nullopt;
   }
-  if (frame != nullptr) {
-    if (raw.size() != size_) {
-      throw SourceError(path_ + ": frame " + std::to_string(pos_) + " is " + size_text(raw.size()) +
-                        " but the video started at " + size_text(size_));
-    }
-    if (format_ == ColorFormat::gray) {
-      cv::cvtColor(raw, *frame, raw.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
-    } else if (raw.channels() == 1) {
-      cv::cvtColor(raw, *frame, cv::COLOR_GRAY2BGR);
-    } else {
-      *frame = std::move(raw);
-    }
+  if (raw.size() != size_) {
+    throw SourceError(path_ + ": frame " + std::to_string(pos_) + " is " + size_text(raw.size()) +
+                      " but the video started at " + size_text(size_));
   }
-  ++pos_;
-  return true;
-}
-
-std::optional<SourceFrame> VideoSource::next() {
   SourceFrame f;
-  f.index = pos_;
-  if (!advance(&f.image)) return std::nullopt;
+  f.index = pos_++;
+  if (format_ == ColorFormat::gray) {
+    cv::cvtColor(raw, f.image, raw.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  } else if (raw.channels() == 1) {
+    cv::cvtColor(raw, f.image, cv::COLOR_GRAY2BGR);
+  } else {
+    f.image = std::move(raw);
+  }
   return f;
 }
-
-bool VideoSource::skip() { return advance(nullptr); }
 
 }  // namespace neopipe::pipeline::io

@@ -14,14 +14,11 @@ class VideoSource final : public FrameSource {
   /// Throws SourceError if the file cannot be opened as a video or holds no frames.
   VideoSource(std::string path, ColorFormat format);
   std::optional<SourceFrame> next() override;
-  bool skip() override;
   std::string description() const override { return path_; }
   double fps() const override { return fps_; }
   std::optional<std::int64_t> frame_count() const override;
 
  private:
-  bool advance(cv::Mat* frame);
-
   std::string path_;
   ColorFormat format_;
   cv::VideoCapture cap_;

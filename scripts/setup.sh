@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages neopipe needs to build, test and run. Safe to run again: it installs
+# only what is missing. Needs root, or sudo.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libopencv-dev          # codecs, video I/O, reference implementations
+  libeigen3-dev          # geometry (calibration, navigation)
+  libtbb-dev             # oneTBB: the scheduler's threads
+  libyaml-cpp-dev        # graph specs, worlds
+  libcli11-dev           # the command line
+  libfmt-dev
+  nlohmann-json3-dev     # JSON output
+  libgtest-dev libgmock-dev
+  libbenchmark-dev       # kernel micro-benchmarks
+  ffmpeg                 # OpenCV's video back end and a handy tool for users' videos
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages are installed"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo=sudo
+fi
+echo "setup: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,1105 @@
+// End-to-end tests of the `neopipe` command-line tool: the built binary is run as a child process
+// on inputs generated here (lossless FFV1 .mkv and MJPG .avi videos of white disks with known
+// centres moving on black, PNG images, directories), and its exit status, stdout, stderr and output
+// files are checked:
+//   * `run`: the blob table (CSV / JSON Lines, --moments, --threshold, --connectivity, stdout vs
+//     --out), centroids against the known disk centres, frame numbering and blob order, the stderr
+//     summary, images / image lists / directories as input;
+//   * determinism across --threads for the built-in graph and an example graph, and
+//     examples/blobs.yaml == the built-in graph byte for byte;
+//   * --annotate into a video and into PNG files; --realtime accounting (processed + dropped);
+//   * bad input and bad command lines: a non-zero exit (2 for command-line errors), no signal, exactly
+//     one "error:" line naming the input and the cause, rows of already processed frames kept;
+//     graph spec errors reported as "path:line:col:";
+//   * --help texts, --list-kernels and `bench --json`.
+// Every child runs under a timeout so that a hang fails the test instead of blocking the run.
+// Set NEOPIPE_CLI_KEEP_TMP=1 to keep the generated inputs and the outputs for a look afterwards.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int kTimeoutSeconds = 60;
+const std::string kHeader = "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy";
+
+// ---------------------------------------------------------------------------------------------
+// Running the binary
+
+struct RunResult {
+  bool timed_out = false;
+  bool signaled = false;
+  int signal = 0;
+  int exit_code = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  f << text;
+}
+
+std::string describe(const std::vector<std::string>& args) {
+  std::string s = "neopipe";
+  for (const auto& a : args) s += " " + a;
+  return s;
+}
+
+/// Runs NEOPIPE_BINARY with `args`, stdin from /dev/null, stdout and stderr captured separately
+/// (through files, so a chatty child never blocks on a full pipe). Kills it after kTimeoutSeconds.
+RunResult run_neopipe(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const fs::path capture = fs::temp_directory_path() /
+                           ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  const std::string out_path = capture.string() + ".out";
+  const std::string err_path = capture.string() + ".err";
+
+  std::vector<std::string> argv_s{NEOPIPE_BINARY};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  RunResult r;
+  if (rc != 0) {
+    ADD_FAILURE() << "posix_spawn(" << argv[0] << ") failed: " << std::strerror(rc);
+    return r;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
+  int status = 0;
+  for (;;) {
+    const pid_t w = waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 && errno != EINTR) {
+      ADD_FAILURE() << "waitpid failed: " << std::strerror(errno);
+      return r;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) {
+    r.signaled = true;
+    r.signal = WTERMSIG(status);
+  }
+  r.out = slurp(out_path);
+  r.err = slurp(err_path);
+  fs::remove(out_path);
+  fs::remove(err_path);
+  EXPECT_FALSE(r.timed_out) << describe(args) << ": killed after " << kTimeoutSeconds << " s";
+  return r;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::istringstream in(text);
+  while (std::getline(in, line)) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, sep)) parts.push_back(part);
+  if (!s.empty() && s.back() == sep) parts.emplace_back();
+  return parts;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
+
+/// Asserts a successful run (exit 0, no signal) and returns whether it was one.
+::testing::AssertionResult succeeded(const RunResult& r) {
+  if (r.timed_out) return ::testing::AssertionFailure() << "timed out";
+  if (r.signaled) return ::testing::AssertionFailure() << "killed by signal " << r.signal << "\nstderr:\n" << r.err;
+  if (r.exit_code != 0) {
+    return ::testing::AssertionFailure() << "exit code " << r.exit_code << "\nstderr:\n" << r.err;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// The checks every failure must pass: a non-zero exit that is not a signal, and the last
+/// non-empty stderr line is the only line mentioning "error" and contains "error:" and each of
+/// `needles`. Returns that line ("" if the checks failed).
+std::string expect_one_error(const RunResult& r, const std::vector<std::string>& needles,
+                             std::optional<int> code = std::nullopt) {
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_FALSE(r.signaled) << "killed by signal " << r.signal << " (a crash)\nstderr:\n" << r.err;
+  EXPECT_NE(r.exit_code, 0) << "stderr:\n" << r.err;
+  if (code) {
+    EXPECT_EQ(r.exit_code, *code) << "stderr:\n" << r.err;
+  }
+  std::vector<std::string> lines;
+  for (const auto& l : split_lines(r.err)) {
+    if (l.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(l);
+  }
+  if (lines.empty()) {
+    ADD_FAILURE() << "stderr is empty; expected one error line";
+    return "";
+  }
+  const std::string& last = lines.back();
+  EXPECT_TRUE(contains(last, "error:")) << "last stderr line: " << last << "\nstderr:\n" << r.err;
+  for (size_t i = 0; i + 1 < lines.size(); ++i) {
+    EXPECT_FALSE(contains(lower(lines[i]), "error")) << "another stderr line mentions an error: " << lines[i];
+  }
+  for (const auto& n : needles) EXPECT_TRUE(contains(last, n)) << "error line lacks '" << n << "': " << last;
+  return last;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The scene: white disks with known centres on black
+
+constexpr int kW = 160;
+constexpr int kH = 120;
+constexpr int kFrames = 20;
+
+struct Disk {
+  cv::Point centre;
+  int radius;
+  int value = 255;
+};
+
+/// Frame k of the moving scene: disk A moves right, disk B moves down, disk C stands still. B's
+/// top row is above A's for k < 6 and below it after, so the raster order of the blobs changes.
+std::vector<Disk> scene(int k) {
+  return {{{30 + 3 * k, 40}, 8}, {{100, 30 + 2 * k}, 10}, {{140, 100}, 6}};
+}
+
+cv::Mat disk_mask(const Disk& d, cv::Size size = {kW, kH}) {
+  cv::Mat m = cv::Mat::zeros(size, CV_8UC1);
+  cv::circle(m, d.centre, d.radius, cv::Scalar(255), cv::FILLED, cv::LINE_8);
+  return m;
+}
+
+cv::Mat render(const std::vector<Disk>& disks, cv::Size size = {kW, kH}) {
+  cv::Mat img = cv::Mat::zeros(size, CV_8UC3);
+  for (const auto& d : disks) {
+    cv::circle(img, d.centre, d.radius, cv::Scalar(d.value, d.value, d.value), cv::FILLED, cv::LINE_8);
+  }
+  return img;
+}
+
+/// What the blob table should say about one disk, computed from its own mask.
+struct ExpectedBlob {
+  int first_pixel;  ///< y * width + x of its first pixel in raster order
+  double cx, cy;
+  std::int64_t area;
+  cv::Rect box;
+  double mu20, mu11, mu02;
+};
+
+/// The disks of a frame as blobs, in the order the table must list them.
+std::vector<ExpectedBlob> expected_blobs(const std::vector<Disk>& disks, cv::Size size = {kW, kH}) {
+  std::vector<ExpectedBlob> out;
+  for (const auto& d : disks) {
+    const cv::Mat m = disk_mask(d, size);
+    std::vector<cv::Point> pts;
+    cv::findNonZero(m, pts);
+    int first = size.area();
+    for (const auto& p : pts) first = std::min(first, p.y * size.width + p.x);
+    const cv::Moments mo = cv::moments(m, true);
+    out.push_back({first, double(d.centre.x), double(d.centre.y), static_cast<std::int64_t>(pts.size()),
+                   cv::boundingRect(pts), mo.mu20, mo.mu11, mo.mu02});
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first_pixel < b.first_pixel; });
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The blob table
+
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;  ///< as printed
+
+  int col(const std::string& name) const {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
+  }
+  double num(size_t row, const std::string& name) const {
+    const int c = col(name);
+    if (c < 0 || static_cast<size_t>(c) >= rows[row].size()) {
+      ADD_FAILURE() << "no column " << name;
+      return 0;
+    }
+    return std::stod(rows[row][static_cast<size_t>(c)]);
+  }
+  std::int64_t integer(size_t row, const std::string& name) const { return static_cast<std::int64_t>(num(row, name)); }
+  /// Row indices of each frame, in table order.
+  std::map<std::int64_t, std::vector<size_t>> by_frame() const {
+    std::map<std::int64_t, std::vector<size_t>> m;
+    for (size_t i = 0; i < rows.size(); ++i) m[integer(i, "frame")].push_back(i);
+    return m;
+  }
+};
+
+/// Parses CSV text; every row must have as many fields as the header.
+Table parse_csv(const std::string& text) {
+  Table t;
+  const auto lines = split_lines(text);
+  if (lines.empty()) {
+    ADD_FAILURE() << "empty CSV";
+    return t;
+  }
+  t.columns = split(lines[0], ',');
+  for (size_t i = 1; i < lines.size(); ++i) {
+    auto f = split(lines[i], ',');
+    EXPECT_EQ(f.size(), t.columns.size()) << "CSV line " << i + 1 << ": " << lines[i];
+    t.rows.push_back(std::move(f));
+  }
+  EXPECT_TRUE(text.empty() || text.back() == '\n') << "the CSV does not end with a newline";
+  return t;
+}
+
+/// Checks a table of the moving scene (or part of it): frames in increasing order, blob numbers
+/// 0..n-1 within a frame, blobs in raster order of their first pixel, centroid within `tolerance`
+/// of the disk centres; with `exact`, area, bounding box and weighted centroid exactly too.
+void expect_scene_rows(const Table& t, const std::set<std::int64_t>& frames, double tolerance, bool exact) {
+  const auto groups = t.by_frame();
+  std::set<std::int64_t> seen;
+  for (const auto& [f, idx] : groups) seen.insert(f);
+  EXPECT_EQ(seen, frames);
+  std::int64_t last_frame = -1;
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    const auto f = t.integer(i, "frame");
+    EXPECT_GE(f, last_frame) << "frames out of order at row " << i;
+    last_frame = f;
+  }
+  for (const auto& [f, idx] : groups) {
+    const auto expected = expected_blobs(scene(static_cast<int>(f)));
+    ASSERT_EQ(idx.size(), expected.size()) << "frame " << f << ": one row per disk";
+    for (size_t b = 0; b < idx.size(); ++b) {
+      const size_t r = idx[b];
+      const auto& e = expected[b];
+      SCOPED_TRACE("frame " + std::to_string(f) + " blob " + std::to_string(b));
+      EXPECT_EQ(t.integer(r, "blob"), static_cast<std::int64_t>(b));
+      EXPECT_NEAR(t.num(r, "cx"), e.cx, tolerance);
+      EXPECT_NEAR(t.num(r, "cy"), e.cy, tolerance);
+      EXPECT_NEAR(t.num(r, "wcx"), e.cx, tolerance);
+      EXPECT_NEAR(t.num(r, "wcy"), e.cy, tolerance);
+      if (exact) {
+        EXPECT_EQ(t.integer(r, "area"), e.area);
+        EXPECT_EQ(t.integer(r, "x0"), e.box.x);
+        EXPECT_EQ(t.integer(r, "y0"), e.box.y);
+        EXPECT_EQ(t.integer(r, "w"), e.box.width);
+        EXPECT_EQ(t.integer(r, "h"), e.box.height);
+      }
+    }
+  }
+}
+
+/// The rows of frames 0..n-1.
+Table only_frames(const Table& t, std::int64_t n) {
+  Table out;
+  out.columns = t.columns;
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    if (t.integer(i, "frame") < n) out.rows.push_back(t.rows[i]);
+  }
+  return out;
+}
+
+std::set<std::int64_t> range_set(std::int64_t n) {
+  std::set<std::int64_t> s;
+  for (std::int64_t i = 0; i < n; ++i) s.insert(i);
+  return s;
+}
+
+struct Summary {
+  std::int64_t processed = -1, dropped = -1, blobs = -1;
+};
+
+/// Parses "N frames, D dropped, B blobs in S s (F frames/s); latency p50 X ms, p99 Y ms".
+std::optional<Summary> parse_summary(const std::string& err) {
+  static const std::regex re(
+      R"((\d+) frames, (\d+) dropped, (\d+) blobs in [0-9.]+ s \([0-9.]+ frames/s\); latency p50 [0-9.]+ ms, p99 [0-9.]+ ms)");
+  std::smatch m;
+  if (!std::regex_search(err, m, re)) return std::nullopt;
+  return Summary{std::stoll(m[1]), std::stoll(m[2]), std::stoll(m[3])};
+}
+
+/// "path:line:col: " at the start of the message after "error: "; returns {line, col}.
+std::optional<std::pair<int, int>> graph_error_position(const std::string& error_line, const std::string& path) {
+  const std::string prefix = "error: " + path + ":";
+  const auto at = error_line.find(prefix);
+  if (at == std::string::npos) return std::nullopt;
+  static const std::regex re(R"(^(\d+):(\d+): )");
+  std::smatch m;
+  const std::string rest = error_line.substr(at + prefix.size());
+  if (!std::regex_search(rest, m, re)) return std::nullopt;
+  return std::make_pair(std::stoi(m[1]), std::stoi(m[2]));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Inputs, generated once per test program in a fresh temp directory
+
+void write_video(const fs::path& path, int fourcc, int frames) {
+  cv::VideoWriter w(path.string(), cv::CAP_FFMPEG, fourcc, 25.0, cv::Size(kW, kH), true);
+  ASSERT_TRUE(w.isOpened()) << "cannot write the test video " << path;
+  for (int k = 0; k < frames; ++k) w.write(render(scene(k)));
+  w.release();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  static inline fs::path root;
+  static inline fs::path mkv;        // FFV1, lossless, kFrames frames
+  static inline fs::path avi;        // MJPG, kFrames frames
+  static inline fs::path png_dir;    // kFrames PNGs of the scene, plus a text file to ignore
+  static inline fs::path examples;   // NEOPIPE_EXAMPLES_DIR
+
+  static void SetUpTestSuite() {
+    std::string tmpl = (fs::temp_directory_path() / "neopipe_cli_XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr) << tmpl << ": " << std::strerror(errno);
+    root = tmpl;
+    examples = NEOPIPE_EXAMPLES_DIR;
+    mkv = root / "scene.mkv";
+    avi = root / "scene.avi";
+    write_video(mkv, cv::VideoWriter::fourcc('F', 'F', 'V', '1'), kFrames);
+    write_video(avi, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), kFrames);
+    png_dir = root / "scene_png";
+    fs::create_directory(png_dir);
+    for (int k = 0; k < kFrames; ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "f%03d.png", k);
+      cv::imwrite((png_dir / name).string(), render(scene(k)));
+    }
+    write_text(png_dir / "notes.txt", "not an image\n");
+  }
+
+  static void TearDownTestSuite() {
+    if (std::getenv("NEOPIPE_CLI_KEEP_TMP") != nullptr) {
+      std::printf("NEOPIPE_CLI_KEEP_TMP: inputs and outputs kept in %s\n", root.c_str());
+      return;
+    }
+    std::error_code ec;
+    fs::remove_all(root, ec);
+  }
+
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = root / info->name();
+    fs::create_directories(dir);
+  }
+
+  /// `neopipe run ARGS... --out dir/NAME`, expected to succeed; returns the table file's text.
+  std::string run_to_file(std::vector<std::string> args, const std::string& name = "t.csv") {
+    const fs::path out = dir / name;
+    args.insert(args.begin(), "run");
+    args.push_back("--out");
+    args.push_back(out.string());
+    const RunResult r = run_neopipe(args);
+    EXPECT_TRUE(succeeded(r)) << describe(args);
+    return slurp(out);
+  }
+
+  static std::string png(int k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "f%03d.png", k);
+    return (png_dir / name).string();
+  }
+
+  fs::path dir;  // this test's own directory
+};
+
+// ---------------------------------------------------------------------------------------------
+// 0. The generated inputs are what the tests assume (otherwise the tool would be blamed wrongly)
+
+TEST_F(Cli, GeneratedLosslessVideoDecodesToTheDrawnFrames) {
+  cv::VideoCapture cap(mkv.string(), cv::CAP_FFMPEG);
+  ASSERT_TRUE(cap.isOpened());
+  int k = 0;
+  cv::Mat f;
+  while (cap.read(f)) {
+    ASSERT_LT(k, kFrames);
+    EXPECT_EQ(cv::norm(f, render(scene(k)), cv::NORM_INF), 0) << "FFV1 frame " << k << " is not lossless";
+    ++k;
+  }
+  EXPECT_EQ(k, kFrames);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1. The blob table
+
+TEST_F(Cli, RunVideoWritesCsvWithOneRowPerDiskAndExactCentroids) {
+  const fs::path out = dir / "t.csv";
+  const RunResult r = run_neopipe({"run", mkv.string(), "--out", out.string()});
+  ASSERT_TRUE(succeeded(r));
+  EXPECT_EQ(r.out, "") << "with --out nothing goes to stdout";
+  const std::string text = slurp(out);
+  ASSERT_EQ(split_lines(text).at(0), kHeader);
+  const Table t = parse_csv(text);
+  EXPECT_EQ(t.rows.size(), static_cast<size_t>(3 * kFrames));
+  expect_scene_rows(t, range_set(kFrames), 0.5, true);
+  // Exact too: a filled disk is symmetric about its integer centre.
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    const double cx = t.num(i, "cx");
+    EXPECT_EQ(cx, std::round(cx)) << "row " << i;
+  }
+}
+
+TEST_F(Cli, RunSummaryOnStderrReportsFramesRateLatencyAndDrops) {
+  const RunResult r = run_neopipe({"run", mkv.string(), "--out", (dir / "t.csv").string()});
+  ASSERT_TRUE(succeeded(r));
+  const auto s = parse_summary(r.err);
+  ASSERT_TRUE(s) << "no summary in stderr:\n" << r.err;
+  EXPECT_EQ(s->processed, kFrames);
+  EXPECT_EQ(s->dropped, 0);
+  EXPECT_EQ(s->blobs, 3 * kFrames);
+  EXPECT_TRUE(contains(r.err, mkv.string())) << "the summary names the input:\n" << r.err;
+  EXPECT_FALSE(contains(lower(r.err), "error")) << r.err;
+}
+
+TEST_F(Cli, QuietRunPrintsNothingOnStderr) {
+  const RunResult r = run_neopipe({"run", mkv.string(), "-q", "--out", (dir / "t.csv").string()});
+  ASSERT_TRUE(succeeded(r));
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Cli, WithoutOutTheTableGoesToStdout) {
+  const std::string file = run_to_file({mkv.string()});
+  const RunResult r = run_neopipe({"run", mkv.string()});
+  ASSERT_TRUE(succeeded(r));
+  EXPECT_EQ(r.out, file);
+  ASSERT_FALSE(r.out.empty());
+  EXPECT_EQ(split_lines(r.out).at(0), kHeader);
+}
+
+TEST_F(Cli, JsonLinesHoldTheSameFieldsAndValuesAsCsv) {
+  const Table csv = parse_csv(run_to_file({mkv.string()}));
+  const std::string jsonl = run_to_file({mkv.string()}, "t.jsonl");
+  const RunResult by_flag = run_neopipe({"run", mkv.string(), "--format", "jsonl"});
+  ASSERT_TRUE(succeeded(by_flag));
+  EXPECT_EQ(by_flag.out, jsonl) << "--format jsonl on stdout == --out t.jsonl";
+
+  const auto lines = split_lines(jsonl);
+  ASSERT_EQ(lines.size(), csv.rows.size());
+  for (size_t i = 0; i < lines.size(); ++i) {
+    json j;
+    ASSERT_NO_THROW(j = json::parse(lines[i])) << "line " << i + 1 << ": " << lines[i];
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j.size(), csv.columns.size()) << lines[i];
+    for (const auto& c : csv.columns) {
+      ASSERT_TRUE(j.contains(c)) << "line " << i + 1 << " lacks " << c;
+      ASSERT_TRUE(j[c].is_number()) << c;
+      EXPECT_EQ(j[c].get<double>(), csv.num(i, c)) << "line " << i + 1 << " field " << c;
+    }
+  }
+}
+
+TEST_F(Cli, MomentsAddsTheSecondCentralMoments) {
+  const std::string text = run_to_file({mkv.string(), "--moments"});
+  ASSERT_EQ(split_lines(text).at(0), kHeader + ",mu20,mu11,mu02");
+  const Table t = parse_csv(text);
+  expect_scene_rows(t, range_set(kFrames), 0.5, true);
+  for (const auto& [f, idx] : t.by_frame()) {
+    const auto e = expected_blobs(scene(static_cast<int>(f)));
+    ASSERT_EQ(idx.size(), e.size());
+    for (size_t b = 0; b < idx.size(); ++b) {
+      EXPECT_NEAR(t.num(idx[b], "mu20"), e[b].mu20, 1e-6 * e[b].mu20) << "frame " << f << " blob " << b;
+      EXPECT_NEAR(t.num(idx[b], "mu11"), e[b].mu11, 1e-6 * e[b].mu20) << "frame " << f << " blob " << b;
+      EXPECT_NEAR(t.num(idx[b], "mu02"), e[b].mu02, 1e-6 * e[b].mu02) << "frame " << f << " blob " << b;
+    }
+  }
+  const std::string jsonl = run_to_file({mkv.string(), "--moments"}, "t.jsonl");
+  const json first = json::parse(split_lines(jsonl).at(0));
+  for (const char* k : {"mu20", "mu11", "mu02"}) EXPECT_TRUE(first.contains(k)) << k;
+}
+
+TEST_F(Cli, FixedThresholdIsHonouredAndStrict) {
+  // Squares of gray 128, 129 and 200 on black: foreground is value > T.
+  cv::Mat img = cv::Mat::zeros(60, 90, CV_8UC3);
+  img(cv::Rect(5, 5, 10, 10)).setTo(cv::Scalar::all(128));
+  img(cv::Rect(35, 5, 10, 10)).setTo(cv::Scalar::all(129));
+  img(cv::Rect(65, 5, 10, 10)).setTo(cv::Scalar::all(200));
+  const fs::path p = dir / "levels.png";
+  cv::imwrite(p.string(), img);
+  const auto count_and_first_x = [&](const std::string& t) {
+    const Table tab = parse_csv(run_to_file({p.string(), "--threshold", t}));
+    return std::make_pair(tab.rows.size(), tab.rows.empty() ? -1 : tab.integer(0, "x0"));
+  };
+  EXPECT_EQ(count_and_first_x("127"), std::make_pair(size_t{3}, std::int64_t{5}));
+  EXPECT_EQ(count_and_first_x("128"), std::make_pair(size_t{2}, std::int64_t{35}));
+  EXPECT_EQ(count_and_first_x("199"), std::make_pair(size_t{1}, std::int64_t{65}));
+  EXPECT_EQ(count_and_first_x("200"), std::make_pair(size_t{0}, std::int64_t{-1}));
+}
+
+TEST_F(Cli, ConnectivityFourSplitsDiagonalNeighbours) {
+  // Two 10x10 squares touching only corner to corner: one 8-connected blob, two 4-connected ones.
+  cv::Mat img = cv::Mat::zeros(60, 60, CV_8UC3);
+  img(cv::Rect(10, 10, 10, 10)).setTo(cv::Scalar::all(255));
+  img(cv::Rect(20, 20, 10, 10)).setTo(cv::Scalar::all(255));
+  const fs::path p = dir / "diagonal.png";
+  cv::imwrite(p.string(), img);
+  const Table four = parse_csv(run_to_file({p.string(), "--connectivity", "4"}));
+  ASSERT_EQ(four.rows.size(), 2u);
+  EXPECT_EQ(four.integer(0, "area"), 100);
+  EXPECT_EQ(four.integer(1, "area"), 100);
+  EXPECT_EQ(four.integer(1, "x0"), 20);
+  const Table eight = parse_csv(run_to_file({p.string(), "--connectivity", "8"}));
+  ASSERT_EQ(eight.rows.size(), 1u);
+  EXPECT_EQ(eight.integer(0, "area"), 200);
+  EXPECT_EQ(eight.integer(0, "w"), 20);
+  const Table dflt = parse_csv(run_to_file({p.string()}));
+  EXPECT_EQ(dflt.rows.size(), 1u) << "the default is 8-connected";
+}
+
+TEST_F(Cli, SinglePngIsOneFrame) {
+  const Table t = parse_csv(run_to_file({png(7)}));
+  ASSERT_EQ(t.rows.size(), 3u);
+  for (size_t i = 0; i < t.rows.size(); ++i) EXPECT_EQ(t.integer(i, "frame"), 0);
+  // Frame 0 of the table is scene frame 7.
+  const auto e = expected_blobs(scene(7));
+  for (size_t b = 0; b < 3; ++b) {
+    EXPECT_NEAR(t.num(b, "cx"), e[b].cx, 1e-9);
+    EXPECT_NEAR(t.num(b, "cy"), e[b].cy, 1e-9);
+    EXPECT_EQ(t.integer(b, "area"), e[b].area);
+  }
+}
+
+TEST_F(Cli, SeveralPngsAreFramesInTheGivenOrder) {
+  // Given as f004 f001 f002: table frame 0 must be scene frame 4, and so on.
+  const std::vector<int> order{4, 1, 2};
+  const Table t = parse_csv(run_to_file({png(4), png(1), png(2)}));
+  const auto groups = t.by_frame();
+  ASSERT_EQ(groups.size(), order.size());
+  for (size_t f = 0; f < order.size(); ++f) {
+    ASSERT_TRUE(groups.count(static_cast<std::int64_t>(f))) << "frame " << f;
+    const auto& idx = groups.at(static_cast<std::int64_t>(f));
+    const auto e = expected_blobs(scene(order[f]));
+    ASSERT_EQ(idx.size(), e.size());
+    for (size_t b = 0; b < idx.size(); ++b) {
+      EXPECT_NEAR(t.num(idx[b], "cx"), e[b].cx, 1e-9) << "frame " << f;
+      EXPECT_NEAR(t.num(idx[b], "cy"), e[b].cy, 1e-9) << "frame " << f;
+    }
+  }
+}
+
+TEST_F(Cli, DirectoryOfImagesIsReadInNameOrderIgnoringOtherFiles) {
+  const std::string text = run_to_file({png_dir.string()});
+  const Table t = parse_csv(text);
+  EXPECT_EQ(t.rows.size(), static_cast<size_t>(3 * kFrames));
+  expect_scene_rows(t, range_set(kFrames), 1e-9, true);
+  // The same as the lossless video, byte for byte.
+  EXPECT_EQ(text, run_to_file({mkv.string()}, "video.csv"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2, 3. Determinism and the example graph
+
+TEST_F(Cli, BuiltInGraphGivesIdenticalBytesForAnyThreadCount) {
+  const std::string one = run_to_file({mkv.string(), "--threads", "1"}, "t1.csv");
+  ASSERT_EQ(parse_csv(one).rows.size(), static_cast<size_t>(3 * kFrames));
+  EXPECT_EQ(run_to_file({mkv.string(), "--threads", "2"}, "t2.csv"), one);
+  EXPECT_EQ(run_to_file({mkv.string(), "--threads", "8"}, "t8.csv"), one);
+  EXPECT_EQ(run_to_file({mkv.string(), "--threads", "8", "--frames-in-flight", "2"}, "t8b.csv"), one);
+}
+
+TEST_F(Cli, BackgroundSubtractionGraphGivesIdenticalBytesForAnyThreadCount) {
+  const std::string graph = (examples / "background_subtraction.yaml").string();
+  const std::string one = run_to_file({avi.string(), "--graph", graph, "--threads", "1"}, "t1.csv");
+  // The moving disks differ from the running background, so there is something to compare.
+  EXPECT_GT(parse_csv(one).rows.size(), static_cast<size_t>(kFrames));
+  EXPECT_EQ(run_to_file({avi.string(), "--graph", graph, "--threads", "2"}, "t2.csv"), one);
+  EXPECT_EQ(run_to_file({avi.string(), "--graph", graph, "--threads", "8"}, "t8.csv"), one);
+}
+
+TEST_F(Cli, BlobsExampleGraphEqualsTheBuiltInGraph) {
+  const std::string builtin = run_to_file({avi.string()}, "builtin.csv");
+  EXPECT_EQ(parse_csv(builtin).rows.size(), static_cast<size_t>(3 * kFrames));
+  EXPECT_EQ(run_to_file({avi.string(), "--graph", (examples / "blobs.yaml").string()}, "yaml.csv"), builtin);
+  EXPECT_EQ(run_to_file({avi.string(), "--graph", (examples / "blobs.yaml").string(), "--moments"}, "yaml_m.csv"),
+            run_to_file({avi.string(), "--moments"}, "builtin_m.csv"));
+}
+
+TEST_F(Cli, MjpgVideoCentroidsAreCloseToTheDiskCentres) {
+  const Table t = parse_csv(run_to_file({avi.string()}));
+  expect_scene_rows(t, range_set(kFrames), 0.5, false);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 4. Annotation
+
+TEST_F(Cli, AnnotateVideoHasEveryFrame) {
+  const fs::path video = dir / "out.mp4";
+  const RunResult r = run_neopipe({"run", mkv.string(), "--annotate", video.string(), "--out", (dir / "t.csv").string()});
+  ASSERT_TRUE(succeeded(r));
+  cv::VideoCapture cap(video.string(), cv::CAP_FFMPEG);
+  ASSERT_TRUE(cap.isOpened()) << video;
+  int n = 0;
+  cv::Mat f;
+  while (cap.read(f)) {
+    EXPECT_EQ(f.size(), cv::Size(kW, kH));
+    ++n;
+  }
+  EXPECT_EQ(n, kFrames);
+}
+
+TEST_F(Cli, AnnotateSingleImageWritesExactlyThatPng) {
+  const fs::path out = dir / "out.png";
+  const std::string text = run_to_file({png(3), "--annotate", out.string()});
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "out_000000.png"));
+  const cv::Mat img = cv::imread(out.string(), cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(img.size(), cv::Size(kW, kH));
+  // The bounding box is drawn in green: its top-left corner (outside the disk) is green.
+  const Table t = parse_csv(text);
+  ASSERT_EQ(t.rows.size(), 3u);
+  for (size_t i = 0; i < t.rows.size(); ++i) {
+    const auto x0 = static_cast<int>(t.integer(i, "x0"));
+    const auto y0 = static_cast<int>(t.integer(i, "y0"));
+    EXPECT_EQ(img.at<cv::Vec3b>(y0, x0), cv::Vec3b(0, 200, 0)) << "blob " << i;
+  }
+}
+
+TEST_F(Cli, AnnotateSeveralFramesWritesNumberedPngs) {
+  const fs::path out = dir / "out.png";
+  run_to_file({png(0), png(1), png(2), png(3), png(4), "--annotate", out.string()});
+  for (int k = 0; k < 5; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "out_%06d.png", k);
+    const cv::Mat img = cv::imread((dir / name).string(), cv::IMREAD_COLOR);
+    EXPECT_FALSE(img.empty()) << name;
+    EXPECT_EQ(img.size(), cv::Size(kW, kH)) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out_000005.png"));
+  EXPECT_FALSE(fs::exists(out)) << "several frames go to numbered files, not to out.png";
+}
+
+// ---------------------------------------------------------------------------------------------
+// 5. Real time
+
+TEST_F(Cli, RealtimeAccountsForEveryFrameAsProcessedOrDropped) {
+  const fs::path out = dir / "t.csv";
+  const RunResult r =
+      run_neopipe({"run", mkv.string(), "--realtime", "--fps", "1000", "--threads", "2", "--out", out.string()});
+  ASSERT_TRUE(succeeded(r));
+  const auto s = parse_summary(r.err);
+  ASSERT_TRUE(s) << "no summary with a dropped count in stderr:\n" << r.err;
+  EXPECT_EQ(s->processed + s->dropped, kFrames);
+  EXPECT_GT(s->processed, 0);
+  const Table t = parse_csv(slurp(out));
+  EXPECT_EQ(t.rows.size(), static_cast<size_t>(3 * s->processed));
+  EXPECT_EQ(s->blobs, static_cast<std::int64_t>(t.rows.size()));
+  // Rows carry the source frame numbers of the processed frames, and their contents match.
+  std::set<std::int64_t> frames;
+  for (const auto& [f, idx] : t.by_frame()) frames.insert(f);
+  EXPECT_EQ(static_cast<std::int64_t>(frames.size()), s->processed);
+  for (const auto f : frames) {
+    EXPECT_GE(f, 0);
+    EXPECT_LT(f, kFrames);
+  }
+  expect_scene_rows(t, frames, 0.5, true);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 6. Bad input
+
+TEST_F(Cli, MissingFileIsAnError) {
+  const std::string missing = (dir / "missing.mp4").string();
+  const RunResult r = run_neopipe({"run", missing, "--out", (dir / "t.csv").string()});
+  expect_one_error(r, {missing, "no such file"}, 1);
+}
+
+TEST_F(Cli, UnreadableFileIsAnError) {
+  if (geteuid() == 0) GTEST_SKIP() << "running as root, which can read a chmod 000 file";
+  const fs::path p = dir / "locked.png";
+  cv::imwrite(p.string(), render(scene(0)));
+  ASSERT_EQ(chmod(p.c_str(), 0), 0);
+  const RunResult r = run_neopipe({"run", p.string(), "--out", (dir / "t.csv").string()});
+  chmod(p.c_str(), 0644);
+  expect_one_error(r, {p.string(), "cannot open", "ermission"}, 1);
+}
+
+TEST_F(Cli, TextFileNamedPngIsAnError) {
+  const fs::path p = dir / "fake.png";
+  write_text(p, "this is plain text, not a PNG\n");
+  const RunResult r = run_neopipe({"run", p.string(), "--out", (dir / "t.csv").string()});
+  // An image's name with content no image reader recognises is reported as a bad image, not
+  // handed to FFmpeg as a video.
+  expect_one_error(r, {p.string(), "not an image OpenCV can read"}, 1);
+}
+
+TEST_F(Cli, TextFileNamedMp4IsAnError) {
+  const fs::path p = dir / "fake.mp4";
+  write_text(p, "this is plain text, not an MP4 video\n");
+  const RunResult r = run_neopipe({"run", p.string(), "--out", (dir / "t.csv").string()});
+  expect_one_error(r, {p.string(), "neither an image nor a video"}, 1);
+}
+
+TEST_F(Cli, EmptyDirectoryIsAnError) {
+  const fs::path p = dir / "empty_dir";
+  fs::create_directory(p);
+  const RunResult r = run_neopipe({"run", p.string(), "--out", (dir / "t.csv").string()});
+  expect_one_error(r, {p.string(), "no image files"}, 1);
+}
+
+TEST_F(Cli, ZeroLengthAviIsAnError) {
+  const fs::path p = dir / "zero.avi";
+  write_text(p, "");
+  const RunResult r = run_neopipe({"run", p.string(), "--out", (dir / "t.csv").string()});
+  expect_one_error(r, {p.string(), "neither an image nor a video"}, 1);
+}
+
+TEST_F(Cli, TruncatedVideoFailsAfterWritingTheDecodedFrames) {
+  constexpr int kLong = 30;
+  const fs::path p = dir / "cut.avi";
+  write_video(p, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), kLong);
+  const auto full = fs::file_size(p);
+  fs::resize_file(p, full * 6 / 10);
+  const fs::path out = dir / "t.csv";
+  const RunResult r = run_neopipe({"run", p.string(), "--threads", "2", "--out", out.string()});
+  const std::string line = expect_one_error(r, {p.string(), "truncated"}, 1);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(line, m, std::regex(R"(stopped at frame (\d+) of (\d+))"))) << line;
+  const int decoded = std::stoi(m[1]);
+  EXPECT_EQ(std::stoi(m[2]), kLong);
+  EXPECT_GT(decoded, 0);
+  EXPECT_LT(decoded, kLong);
+  // Every frame decoded before the failure has its rows in the table. The last of them is the one
+  // cut by the truncation, which FFmpeg's error concealment hands over half decoded, so only its
+  // presence is checked; the frames before it must be right.
+  const Table t = parse_csv(slurp(out));
+  ASSERT_EQ(t.columns, split(kHeader, ','));
+  std::set<std::int64_t> present;
+  for (const auto& [f, idx] : t.by_frame()) present.insert(f);
+  EXPECT_EQ(present, range_set(decoded));
+  expect_scene_rows(only_frames(t, decoded - 1), range_set(decoded - 1), 0.5, false);
+  const auto s = parse_summary(r.err);
+  ASSERT_TRUE(s) << r.err;
+  EXPECT_EQ(s->processed, decoded);
+}
+
+TEST_F(Cli, ImageOfAnotherSizeMidSequenceFailsAfterWritingTheFirstFrames) {
+  const fs::path seq = dir / "seq";
+  fs::create_directory(seq);
+  cv::imwrite((seq / "a0.png").string(), render(scene(0)));
+  cv::imwrite((seq / "a1.png").string(), render(scene(1)));
+  cv::imwrite((seq / "a2.png").string(), render(scene(2), cv::Size(kW + 8, kH)));
+  cv::imwrite((seq / "a3.png").string(), render(scene(3)));
+  const fs::path out = dir / "t.csv";
+  const fs::path third = seq / "a2.png";
+  const RunResult r = run_neopipe({"run", seq.string(), "--threads", "2", "--out", out.string()});
+  expect_one_error(r, {third.string(), "168x120", "160x120"}, 1);
+  const Table t = parse_csv(slurp(out));
+  expect_scene_rows(t, {0, 1}, 1e-9, true);
+}
+
+// Graph specs with mistakes on known lines.
+const char* const kUnknownKernel =
+    "name: unknown_kernel\n"           // 1
+    "nodes:\n"                         // 2
+    "  - name: src\n"                  // 3
+    "    kernel: source\n"             // 4
+    "    params: {format: bgr}\n"      // 5
+    "  - name: gray\n"                 // 6
+    "    kernel: grey\n"               // 7  <- col 13
+    "    inputs: {in: src}\n"          // 8
+    "  - name: blobs\n"                // 9
+    "    kernel: blobs\n"              // 10
+    "    params: {threshold: 0}\n"     // 11
+    "    inputs: {in: gray}\n"         // 12
+    "outputs: [blobs]\n";              // 13
+
+const char* const kYamlSyntax =
+    "name: bad_yaml\n"                 // 1
+    "nodes:\n"                         // 2
+    "  - name: src\n"                  // 3
+    "    kernel: source\n"             // 4
+    "    params: {format: bgr}\n"      // 5
+    "  - name: gray\n"                 // 6
+    "    kernel: gray: gray\n"         // 7  <- a second ':' on one line
+    "    inputs: {in: src}\n"          // 8
+    "outputs: [gray]\n";               // 9
+
+const char* const kCycle =
+    "name: cycle\n"                    // 1
+    "nodes:\n"                         // 2
+    "  - name: src\n"                  // 3
+    "    kernel: source\n"             // 4
+    "    params: {format: gray}\n"     // 5
+    "  - name: a\n"                    // 6
+    "    kernel: absdiff\n"            // 7
+    "    inputs:\n"                    // 8
+    "      a: src\n"                   // 9
+    "      b: c\n"                     // 10 <- from c, no delay
+    "  - name: c\n"                    // 11
+    "    kernel: absdiff\n"            // 12
+    "    inputs:\n"                    // 13
+    "      a: a\n"                     // 14 <- from a, no delay
+    "      b: src\n"                   // 15
+    "  - name: blobs\n"                // 16
+    "    kernel: blobs\n"              // 17
+    "    params: {threshold: 0}\n"     // 18
+    "    inputs: {in: c}\n"            // 19
+    "outputs: [blobs]\n";              // 20
+
+const char* const kSelfLoop =
+    "name: self_loop\n"                // 1
+    "nodes:\n"                         // 2
+    "  - name: src\n"                  // 3
+    "    kernel: source\n"             // 4
+    "    params: {format: gray}\n"     // 5
+    "  - name: a\n"                    // 6
+    "    kernel: absdiff\n"            // 7
+    "    inputs:\n"                    // 8
+    "      a: src\n"                   // 9
+    "      b: a\n"                     // 10 <- itself, no delay
+    "  - name: blobs\n"                // 11
+    "    kernel: blobs\n"              // 12
+    "    params: {threshold: 0}\n"     // 13
+    "    inputs: {in: a}\n"            // 14
+    "outputs: [blobs]\n";              // 15
+
+const char* const kNoBlobs =
+    "name: no_blobs\n"
+    "nodes:\n"
+    "  - name: src\n"
+    "    kernel: source\n"
+    "    params: {format: gray}\n"
+    "  - name: binary\n"
+    "    kernel: threshold\n"
+    "    params: {value: 128}\n"
+    "    inputs: {in: src}\n"
+    "outputs: [binary]\n";
+
+class CliGraph : public Cli {
+ protected:
+  /// Runs the lossless video through a graph spec with `text`; returns the checked error line.
+  std::string run_bad_graph(const std::string& file_name, const std::string& text,
+                            const std::vector<std::string>& needles) {
+    const fs::path spec = dir / file_name;
+    write_text(spec, text);
+    const RunResult r = run_neopipe({"run", mkv.string(), "--graph", spec.string(), "--out", (dir / "t.csv").string()});
+    auto all = needles;
+    all.push_back(spec.string());
+    return expect_one_error(r, all, 1);
+  }
+};
+
+TEST_F(CliGraph, UnknownKernelIsReportedAtItsLineAndColumn) {
+  const std::string line = run_bad_graph("unknown_kernel.yaml", kUnknownKernel, {"unknown kernel", "grey"});
+  const auto pos = graph_error_position(line, (dir / "unknown_kernel.yaml").string());
+  ASSERT_TRUE(pos) << "expected 'error: PATH:LINE:COL: ...', got: " << line;
+  EXPECT_EQ(pos->first, 7);
+  EXPECT_EQ(pos->second, 13);
+}
+
+TEST_F(CliGraph, YamlSyntaxErrorIsReportedAtItsLine) {
+  const std::string line = run_bad_graph("bad_yaml.yaml", kYamlSyntax, {});
+  const auto pos = graph_error_position(line, (dir / "bad_yaml.yaml").string());
+  ASSERT_TRUE(pos) << "expected 'error: PATH:LINE:COL: ...', got: " << line;
+  EXPECT_EQ(pos->first, 7);
+  EXPECT_EQ(pos->second, 17) << "the second ':'";
+}
+
+TEST_F(CliGraph, CycleWithoutDelayIsReportedAtAnEdgeOfTheCycle) {
+  const std::string line = run_bad_graph("cycle.yaml", kCycle, {"cycle"});
+  const auto pos = graph_error_position(line, (dir / "cycle.yaml").string());
+  ASSERT_TRUE(pos) << "expected 'error: PATH:LINE:COL: ...', got: " << line;
+  EXPECT_TRUE(pos->first == 10 || pos->first == 14) << "line " << pos->first << " is not an edge of the cycle";
+}
+
+TEST_F(CliGraph, SelfLoopWithoutDelayIsReportedAtItsEdge) {
+  const std::string line = run_bad_graph("self_loop.yaml", kSelfLoop, {"cycle"});
+  const auto pos = graph_error_position(line, (dir / "self_loop.yaml").string());
+  ASSERT_TRUE(pos) << "expected 'error: PATH:LINE:COL: ...', got: " << line;
+  EXPECT_EQ(pos->first, 10);
+}
+
+// Regression: a node without a `params:` key once failed with "expected a single value" because an
+// absent parameter map read as a defined null; omitted parameters must take their defaults.
+TEST_F(CliGraph, OmittedParamsTakeTheDocumentedDefaults) {
+  const std::string without =
+      "name: defaults\n"
+      "nodes:\n"
+      "  - name: src\n"
+      "    kernel: source\n"
+      "    params: {format: gray}\n"
+      "  - name: blobs\n"
+      "    kernel: blobs\n"
+      "    inputs: {in: src}\n"
+      "outputs: [blobs]\n";
+  std::string with_empty = without;
+  with_empty.replace(with_empty.find("    inputs: {in: src}"), 0, "    params: {}\n");
+  std::string explicit_defaults = without;
+  explicit_defaults.replace(explicit_defaults.find("    inputs: {in: src}"), 0,
+                            "    params: {threshold: 0, connectivity: 8}\n");
+  write_text(dir / "without.yaml", without);
+  write_text(dir / "empty.yaml", with_empty);
+  write_text(dir / "explicit.yaml", explicit_defaults);
+  const std::string reference = run_to_file({png(5), "--graph", (dir / "explicit.yaml").string()}, "explicit.csv");
+  EXPECT_EQ(parse_csv(reference).rows.size(), 3u);
+  EXPECT_EQ(run_to_file({png(5), "--graph", (dir / "empty.yaml").string()}, "empty.csv"), reference);
+  EXPECT_EQ(run_to_file({png(5), "--graph", (dir / "without.yaml").string()}, "without.csv"), reference);
+}
+
+TEST_F(CliGraph, GraphWithoutBlobsOutputIsAnError) {
+  run_bad_graph("no_blobs.yaml", kNoBlobs, {"no output of type blobs"});
+}
+
+// Command-line errors: exit code 2, the flag named.
+TEST_F(Cli, BadFlagValuesAreUsageErrors) {
+  const std::string csv = (dir / "t.csv").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::vector<std::string> needles;
+  };
+  const std::vector<Case> cases{
+      {{"run", mkv.string(), "--threads", "0", "--out", csv}, {"--threads"}},
+      {{"run", mkv.string(), "--threshold", "300", "--out", csv}, {"--threshold", "300"}},
+      {{"run", mkv.string(), "--connectivity", "6", "--out", csv}, {"--connectivity", "6"}},
+      {{"run", mkv.string(), "--out", (dir / "x.txt").string()}, {"--out", "x.txt"}},
+      {{"run", mkv.string(), "--bogus-flag", "--out", csv}, {"--bogus-flag"}},
+      {{"run", mkv.string(), "--graph", (dir / "missing.yaml").string(), "--out", csv}, {"--graph", "missing.yaml"}},
+      {{"run", mkv.string(), "--graph", (examples / "blobs.yaml").string(), "--threshold", "100", "--out", csv},
+       {"--threshold", "blobs.yaml"}},
+      {{"run", mkv.string(), "--graph", (examples / "blobs.yaml").string(), "--connectivity", "4", "--out", csv},
+       {"--connectivity"}},
+      {{"run", "--out", csv}, {"INPUT"}},
+      {{"run", mkv.string(), "--format", "xml", "--out", csv}, {"--format", "xml"}},
+      {{"bench", "--size", "64by64", "--json"}, {"--size", "64by64"}},
+      {{"bench", "--case", "sparse", "--json"}, {"--case", "sparse"}},
+      {{}, {"subcommand"}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(describe(c.args));
+    const RunResult r = run_neopipe(c.args);
+    expect_one_error(r, c.needles, 2);
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.txt")) << "--out x.txt must not create the file";
+}
+
+// Regression: a mistyped subcommand once got "A subcommand is required", which did not name it.
+TEST_F(Cli, UnknownSubcommandIsNamed) {
+  const RunResult r = run_neopipe({"frobnicate"});
+  expect_one_error(r, {"frobnicate"}, 2);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 7. Help, kernels, bench
+
+TEST_F(Cli, HelpTextsExitZeroAndMentionTheOptions) {
+  const struct {
+    std::vector<std::string> args;
+    std::vector<std::string> mentions;
+  } cases[] = {
+      {{"--help"}, {"run", "bench"}},
+      {{"run", "--help"},
+       {"--graph", "--threshold", "--connectivity", "--out", "--format", "--annotate", "--realtime", "--fps",
+        "--threads", "--frames-in-flight", "--moments", "--quiet", "--list-kernels", kHeader}},
+      {{"bench", "--help"}, {"--size", "--threads", "--case", "--json", "--min-time", "--repeats"}},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(describe(c.args));
+    const RunResult r = run_neopipe(c.args);
+    ASSERT_TRUE(succeeded(r));
+    for (const auto& m : c.mentions) EXPECT_TRUE(contains(r.out, m)) << "help lacks " << m << ":\n" << r.out;
+  }
+}
+
+TEST_F(Cli, ListKernelsNamesTheKernelsTheExamplesUse) {
+  const RunResult r = run_neopipe({"run", "--list-kernels"});
+  ASSERT_TRUE(succeeded(r));
+  std::set<std::string> names;
+  for (const auto& l : split_lines(r.out)) {
+    std::istringstream in(l);
+    std::string first;
+    if (in >> first) names.insert(first);
+  }
+  for (const char* k :
+       {"source", "gray", "threshold", "blobs", "lut2", "absdiff", "bool3x3", "conv3x3", "convert", "add"}) {
+    EXPECT_TRUE(names.count(k)) << "kernel " << k << " not listed:\n" << r.out;
+  }
+}
+
+TEST_F(Cli, BenchJsonRecords) {
+  const RunResult r = run_neopipe(
+      {"bench", "--size", "64x64", "--threads", "1", "--case", "dots", "--min-time", "0.01", "--repeats", "1", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  json j;
+  ASSERT_NO_THROW(j = json::parse(r.out)) << r.out;
+  ASSERT_TRUE(j.is_array());
+  std::set<std::string> impls;
+  for (const auto& rec : j) {
+    for (const char* k : {"case", "impl", "width", "height", "threads", "fps", "mpix_s"}) {
+      ASSERT_TRUE(rec.contains(k)) << k << " missing in " << rec.dump();
+    }
+    EXPECT_EQ(rec.size(), 7u) << rec.dump();
+    EXPECT_EQ(rec["case"], "dots");
+    EXPECT_EQ(rec["width"], 64);
+    EXPECT_EQ(rec["height"], 64);
+    EXPECT_EQ(rec["threads"], 1);
+    const double fps = rec["fps"].get<double>();
+    EXPECT_GT(fps, 0);
+    EXPECT_NEAR(rec["mpix_s"].get<double>(), fps * 64 * 64 / 1e6, 1e-9 * fps);
+    impls.insert(rec["impl"].get<std::string>());
+  }
+  EXPECT_EQ(impls, (std::set<std::string>{"neopipe", "opencv", "floor"}));
+  EXPECT_EQ(j.size(), 3u);
+}
+
+}  // namespace
