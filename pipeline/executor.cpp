@@ -43,6 +43,7 @@ class Executor::Impl {
     consumers_now_.resize(n);
     consumers_next_.resize(n);
     consumers_first_.resize(n);
+    for (const auto& node : graph_.nodes()) in_order_.push_back(node.impl->frame_order() == FrameOrder::in_order);
     for (size_t c = 0; c < n; ++c) {
       for (const auto& in : graph_.nodes()[c].inputs) {
         if (!in.from.valid()) continue;
@@ -200,7 +201,7 @@ class Executor::Impl {
           pending += prev->done[static_cast<size_t>(in.from.node)] == 0 ? 1 : 0;
         }
       }
-      if (prev != nullptr && prev->done[i] == 0) ++pending;  // a node runs frames in order
+      if (in_order_[i] && prev != nullptr && prev->done[i] == 0) ++pending;
       s.pending[i] = pending;
       if (pending == 0) ready.push_back({seq, static_cast<int>(i)});
     }
@@ -303,7 +304,7 @@ class Executor::Impl {
     if (next_seq_ > t.seq + 1) {
       Slot& next = slot(t.seq + 1);
       for (const int c : consumers_next_[i]) release(next, t.seq + 1, c);
-      release(next, t.seq + 1, t.node);
+      if (in_order_[i]) release(next, t.seq + 1, t.node);
     }
     if (s.remaining == 0) complete(t.seq);
     return ready;
@@ -371,6 +372,7 @@ class Executor::Impl {
   std::vector<std::vector<int>> consumers_next_;   // per producer: consumer of each delayed edge
   std::vector<std::vector<int>> consumers_first_;  // per producer: consumer of each initial-value edge
   std::vector<std::vector<Value>> initial_values_; // [node][input]: constant first-frame values
+  std::vector<bool> in_order_;                     // per node: waits for its own previous frame
   cv::Size size_;
   bool configured_ = false;
 

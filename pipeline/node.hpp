@@ -63,10 +63,19 @@ class NodeIO {
   cv::Size size_;
 };
 
+/// Whether the scheduler may run a node on several frames at once.
+///  - in_order: one frame at a time, in frame order, like a PIPE stage. Needed by a node that keeps
+///    per-frame state in itself (set in begin_frame, read in run_rows) or across frames.
+///  - any: the node keeps no state of its own; each frame's work depends only on its inputs, so
+///    frames may overlap and a slow node (blob extraction) does not cap the pipeline's throughput.
+/// Either way a frame's result is the same: this only widens what may run concurrently.
+enum class FrameOrder { in_order, any };
+
 class Node {
  public:
-  Node(std::vector<PortDecl> inputs, std::vector<PortDecl> outputs, kernels::Footprint footprint)
-      : inputs_(std::move(inputs)), outputs_(std::move(outputs)), footprint_(footprint) {}
+  Node(std::vector<PortDecl> inputs, std::vector<PortDecl> outputs, kernels::Footprint footprint,
+       FrameOrder order = FrameOrder::in_order)
+      : inputs_(std::move(inputs)), outputs_(std::move(outputs)), footprint_(footprint), order_(order) {}
   virtual ~Node() = default;
   Node(const Node&) = delete;
   Node& operator=(const Node&) = delete;
@@ -74,6 +83,7 @@ class Node {
   const std::vector<PortDecl>& inputs() const { return inputs_; }
   const std::vector<PortDecl>& outputs() const { return outputs_; }
   kernels::Footprint footprint() const { return footprint_; }
+  FrameOrder frame_order() const { return order_; }
 
   /// Once, before the first frame. Throws std::invalid_argument if the node cannot run at this
   /// frame size (e.g. a constant image of another size).
@@ -81,8 +91,8 @@ class Node {
 
   /// Once per frame, before any rows. The default allocates the image outputs. Nodes with a frame
   /// footprint do all their work here; point and 3x3 nodes may do whole-frame preparation (Otsu's
-  /// histogram). A node runs one frame at a time, in frame order, so per-frame members set here are
-  /// safe to read from run_rows.
+  /// histogram). A FrameOrder::in_order node runs one frame at a time, in frame order, so per-frame
+  /// members set here are safe to read from run_rows.
   virtual void begin_frame(NodeIO& io);
 
   /// Computes output rows [rows.start, rows.end). The scheduler calls it for stripes that cover the
@@ -96,6 +106,7 @@ class Node {
   std::vector<PortDecl> inputs_;
   std::vector<PortDecl> outputs_;
   kernels::Footprint footprint_;
+  FrameOrder order_;
 };
 
 }  // namespace neopipe::pipeline

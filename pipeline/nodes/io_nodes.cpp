@@ -12,7 +12,7 @@ namespace {
 // The frame being processed. The scheduler sets its value; it computes nothing.
 class SourceNode final : public Node {
  public:
-  explicit SourceNode(PortType format) : Node({}, {{"out", format}}, kernels::Footprint::point) {}
+  explicit SourceNode(PortType format) : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any) {}
   void begin_frame(NodeIO&) override {}
 };
 
@@ -20,7 +20,7 @@ class SourceNode final : public Node {
 class ImageNode final : public Node {
  public:
   ImageNode(cv::Mat image, PortType format, std::string path)
-      : Node({}, {{"out", format}}, kernels::Footprint::point), image_(std::move(image)), path_(std::move(path)) {}
+      : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any), image_(std::move(image)), path_(std::move(path)) {}
 
   void configure(cv::Size frame_size) override {
     if (image_.size() != frame_size) {

@@ -16,7 +16,7 @@ using kernels::Footprint;
 class Conv3x3Node final : public Node {
  public:
   Conv3x3Node(kernels::Conv3x3 k, PortType out)
-      : Node({{"in", PortType::gray8}}, {{"out", out}}, Footprint::neighbourhood3x3), k_(k) {}
+      : Node({{"in", PortType::gray8}}, {{"out", out}}, Footprint::neighbourhood3x3, FrameOrder::any), k_(k) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::conv3x3(io.image(0), io.out_image(0), k_, cv_type(outputs()[0].type), rows);
   }
@@ -28,7 +28,7 @@ class Conv3x3Node final : public Node {
 class Bool3x3Node final : public Node {
  public:
   explicit Bool3x3Node(kernels::Bool3x3 k)
-      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3), k_(std::move(k)) {}
+      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3, FrameOrder::any), k_(std::move(k)) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::bool3x3(io.image(0), io.out_image(0), k_, rows);
   }

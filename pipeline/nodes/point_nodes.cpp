@@ -19,7 +19,7 @@ using kernels::Footprint;
 
 class GrayNode final : public Node {
  public:
-  GrayNode() : Node({{"in", PortType::bgr8}}, {{"out", PortType::gray8}}, Footprint::point) {}
+  GrayNode() : Node({{"in", PortType::bgr8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::bgr_to_gray(io.image(0), io.out_image(0), rows);
   }
@@ -28,7 +28,7 @@ class GrayNode final : public Node {
 class LutNode final : public Node {
  public:
   explicit LutNode(const kernels::Lut& table)
-      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point), table_(table) {}
+      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any), table_(table) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::lut(io.image(0), io.out_image(0), table_, rows);
   }
@@ -41,7 +41,9 @@ class LutNode final : public Node {
 class ThresholdNode final : public Node {
  public:
   ThresholdNode(int fixed, bool otsu, std::uint8_t high)
-      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point),
+      // Otsu's T is per-frame state kept in the node, so frames must come one at a time.
+      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
+             otsu ? FrameOrder::in_order : FrameOrder::any),
         t_(fixed), otsu_(otsu), high_(high) {}
   void begin_frame(NodeIO& io) override {
     Node::begin_frame(io);
@@ -60,7 +62,7 @@ class ThresholdNode final : public Node {
 class AluNode final : public Node {
  public:
   explicit AluNode(kernels::AluOp op)
-      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point),
+      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any),
         op_(op) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::alu(op_, io.image(0), io.image(1), io.out_image(0), rows);
@@ -73,7 +75,7 @@ class AluNode final : public Node {
 class Lut2Node final : public Node {
  public:
   explicit Lut2Node(kernels::Lut2 table)
-      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point),
+      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any),
         table_(std::move(table)) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::lut2(io.image(0), io.image(1), io.out_image(0), table_, rows);
@@ -86,7 +88,7 @@ class Lut2Node final : public Node {
 class ConvertNode final : public Node {
  public:
   explicit ConvertNode(kernels::ConvertS16 c)
-      : Node({{"in", PortType::s16}}, {{"out", PortType::gray8}}, Footprint::point), c_(c) {}
+      : Node({{"in", PortType::s16}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any), c_(c) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::convert_s16(io.image(0), io.out_image(0), c_, rows);
   }

@@ -12,7 +12,7 @@ using kernels::Footprint;
 
 class HistogramNode final : public Node {
  public:
-  HistogramNode() : Node({{"in", PortType::gray8}}, {{"out", PortType::histogram}}, Footprint::frame) {}
+  HistogramNode() : Node({{"in", PortType::gray8}}, {{"out", PortType::histogram}}, Footprint::frame, FrameOrder::any) {}
   void begin_frame(NodeIO& io) override {
     auto& h = io.out<Histogram>(0);
     h.fill(0);
@@ -24,7 +24,7 @@ class BlobsNode final : public Node {
  public:
   BlobsNode(kernels::BlobParams params, bool otsu)
       : Node({{"in", PortType::gray8}, {"weights", PortType::gray8, true}}, {{"out", PortType::blobs}},
-             Footprint::frame),
+             Footprint::frame, FrameOrder::any),
         params_(params),
         otsu_(otsu) {}
   void begin_frame(NodeIO& io) override {
