@@ -3,11 +3,10 @@
 #include <fmt/format.h>
 #include <oneapi/tbb/info.h>
 
-#include <nlohmann/json.hpp>
-#include <opencv2/core/utility.hpp>
-
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
 #include <regex>
 
 #include "apps/cli_support.hpp"
@@ -37,11 +36,13 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       "with a fixed threshold; opencv is cv::threshold + cv::connectedComponentsWithStats; floor is one\n"
       "pass summing every pixel. All three run in the same process, interleaved, on the same frames.");
   cmd->add_option("--size", a.sizes, "Frame size(s) (default: 256x256 640x480 1920x1080)")->type_name("WxH");
-  cmd->add_option("--threads", a.threads, "Thread count (default: 1 and all hardware threads)")->check(CLI::Range(1, 256));
+  cmd->add_option("--threads", a.threads, "Thread count (default: 1 and all hardware threads)")
+      ->check(CLI::Range(1, 256));
   cmd->add_option("--case", a.cases, "Case(s) to run (default: dots dense)")->check(CLI::IsMember({"dots", "dense"}));
   cmd->add_flag("--json", a.json, "Print a JSON array of records instead of the table");
   cmd->add_option("--min-time", a.min_seconds, "Seconds each timed run lasts at least")->check(CLI::Range(0.01, 60.0));
-  cmd->add_option("--repeats", a.repeats, "Timed runs per measurement; the median is reported")->check(CLI::Range(1, 100));
+  cmd->add_option("--repeats", a.repeats, "Timed runs per measurement; the median is reported")
+      ->check(CLI::Range(1, 100));
   return cmd;
 }
 
@@ -86,8 +87,13 @@ int bench_command(const BenchArgs& a) {
     std::map<std::string, double> fps;
     for (const auto& r : recs) {
       fps[r.impl] = r.fps;
-      records.push_back({{"case", r.case_name}, {"impl", r.impl}, {"width", r.width}, {"height", r.height},
-                         {"threads", r.threads}, {"fps", r.fps}, {"mpix_s", r.mpix_s}});
+      records.push_back({{"case", r.case_name},
+                         {"impl", r.impl},
+                         {"width", r.width},
+                         {"height", r.height},
+                         {"threads", r.threads},
+                         {"fps", r.fps},
+                         {"mpix_s", r.mpix_s}});
     }
     if (!a.json) {
       bar.clear();

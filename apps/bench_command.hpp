@@ -2,7 +2,6 @@
 // `neopipe bench`: the built-in blob graph side by side with OpenCV and a memory-read floor.
 
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
 

@@ -7,9 +7,9 @@ namespace neopipe::apps {
 
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,      ///< bad input, failed processing
-  kExitUsage = 2,        ///< bad command line
-  kExitInterrupted = 130 ///< stopped by Ctrl-C after finishing the frames in flight
+  kExitFailure = 1,       ///< bad input, failed processing
+  kExitUsage = 2,         ///< bad command line
+  kExitInterrupted = 130  ///< stopped by Ctrl-C after finishing the frames in flight
 };
 
 /// Prints "neopipe COMMAND: error: MESSAGE" as one line on stderr (newlines in MESSAGE become spaces).

@@ -1,7 +1,6 @@
 // neopipe: one binary, one subcommand per job.
 
 #include <CLI/CLI.hpp>
-
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -56,8 +55,9 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     const auto subs = app.get_subcommands();
-    print_error(subs.empty() ? std::string("") : subs.front()->get_name(),
-                std::string(e.what()) + " (see neopipe" + (subs.empty() ? "" : " " + subs.front()->get_name()) + " --help)");
+    print_error(
+        subs.empty() ? std::string("") : subs.front()->get_name(),
+        std::string(e.what()) + " (see neopipe" + (subs.empty() ? "" : " " + subs.front()->get_name()) + " --help)");
     return kExitUsage;
   }
   if (run->parsed()) return guarded("run", [&] { return run_command(run_args); });

@@ -8,12 +8,16 @@
 
 namespace neopipe::apps {
 
-bool stderr_is_terminal() { return isatty(STDERR_FILENO) != 0; }
+bool stderr_is_terminal() {
+  return isatty(STDERR_FILENO) != 0;
+}
 
 ProgressBar::ProgressBar(std::string label, std::optional<std::int64_t> total, bool enabled)
     : label_(std::move(label)), total_(total), enabled_(enabled && stderr_is_terminal()) {}
 
-ProgressBar::~ProgressBar() { clear(); }
+ProgressBar::~ProgressBar() {
+  clear();
+}
 
 void ProgressBar::update(std::int64_t done, const std::string& detail) {
   if (!enabled_) return;

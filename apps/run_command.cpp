@@ -27,7 +27,9 @@ namespace io = neopipe::pipeline::io;
 // Ctrl-C asks the run to stop reading; frames in flight still finish and their rows are written.
 // A signal handler can reach nothing but a global, so this is the one in the program.
 std::atomic<bool> g_stop_requested{false};
-extern "C" void on_interrupt(int /*signal*/) { g_stop_requested.store(true); }
+extern "C" void on_interrupt(int /*signal*/) {
+  g_stop_requested.store(true);
+}
 
 pl::GraphSpec graph_for(const RunArgs& a) {
   if (!a.graph.empty()) {
@@ -76,7 +78,8 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
                 "Pace to the source frame rate; a frame that finds the pipeline full is dropped and counted");
   cmd->add_option("--fps", a.fps, "Frame rate for --realtime (default: the video's; 30 for images)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", a.threads, "Worker threads (default: one per hardware thread)")->check(CLI::Range(1, 256));
+  cmd->add_option("--threads", a.threads, "Worker threads (default: one per hardware thread)")
+      ->check(CLI::Range(1, 256));
   cmd->add_option("--frames-in-flight", a.frames_in_flight, "Frames processed at once (default: threads + 2)")
       ->check(CLI::Range(2, 256));
   cmd->add_flag("--moments", a.moments, "Add the second central moments mu20,mu11,mu02 to the table");
@@ -95,7 +98,8 @@ int run_command(const RunArgs& a) {
   pl::CompiledGraph graph = pl::compile(graph_for(a), pl::standard_kernels());
   const auto blob_output = graph.find_output(pl::PortType::blobs);
   if (!blob_output) {
-    throw pl::GraphError({graph.origin(), 0, 0}, "the graph has no output of type blobs, so there is no blob table to write");
+    throw pl::GraphError({graph.origin(), 0, 0},
+                         "the graph has no output of type blobs, so there is no blob table to write");
   }
   const auto format = graph.source_type() == pl::PortType::bgr8 ? io::ColorFormat::bgr : io::ColorFormat::gray;
   const auto source = io::open_frame_source(a.inputs, format);
@@ -134,13 +138,14 @@ int run_command(const RunArgs& a) {
   int code = kExitOk;
   std::string error;
   try {
-    pl::run_stream(*source, std::move(graph), opts,
-                   [&](const pl::FrameResult& r) {
-                     const auto& blobs = std::get<pl::BlobList>(r.outputs[*blob_output]);
-                     writer->write(r.index, blobs);
-                     if (annotator) annotator->write(r.index, r.input, blobs);
-                   },
-                   stats);
+    pl::run_stream(
+        *source, std::move(graph), opts,
+        [&](const pl::FrameResult& r) {
+          const auto& blobs = std::get<pl::BlobList>(r.outputs[*blob_output]);
+          writer->write(r.index, blobs);
+          if (annotator) annotator->write(r.index, r.input, blobs);
+        },
+        stats);
     if (annotator) annotator->close();
   } catch (const std::exception& e) {
     code = kExitFailure;

@@ -2,7 +2,6 @@
 // `neopipe run`: frames from a video or images through a graph, out as a blob table.
 
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
 

@@ -1,10 +1,9 @@
 #include "bench/blob_bench.hpp"
 
-#include <opencv2/core.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <opencv2/core.hpp>
 
 #include "bench/peers.hpp"
 #include "bench/synthetic.hpp"
@@ -40,7 +39,9 @@ pipeline::CompiledGraph blob_graph(int threshold) {
   return pipeline::compile(pipeline::blob_graph(o), pipeline::standard_kernels());
 }
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // Frames per second of `one(i)` called on frames i = 0, 1, 2, ... for at least min_seconds.
 template <class F>

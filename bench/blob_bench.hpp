@@ -3,10 +3,9 @@
 // way and the memory-read floor, on the same generated frames, in the same run.
 
 #include <functional>
+#include <opencv2/core/types.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/types.hpp>
 
 namespace neopipe::bench {
 

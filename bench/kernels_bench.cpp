@@ -2,6 +2,7 @@
 //   ./build/bench/neopipe_kernels_bench --benchmark_min_time=0.2
 
 #include <benchmark/benchmark.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -30,7 +31,9 @@ const cv::Mat& binary() {
   return b;
 }
 
-void set_bytes(benchmark::State& s) { s.SetBytesProcessed(static_cast<int64_t>(s.iterations()) * frame().total()); }
+void set_bytes(benchmark::State& s) {
+  s.SetBytesProcessed(static_cast<int64_t>(s.iterations()) * frame().total());
+}
 
 void BM_lut_neopipe(benchmark::State& s) {
   cv::Mat out;

@@ -3,6 +3,7 @@
 #include <oneapi/tbb/combinable.h>
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 

@@ -2,10 +2,9 @@
 // What neopipe is measured against, in the same run: the OpenCV way to get blob centroids, and a
 // memory-read floor (the cost of looking at every pixel once).
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 
 namespace neopipe::bench {
 

@@ -1,10 +1,9 @@
 #include "bench/synthetic.hpp"
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 namespace neopipe::bench {
@@ -23,8 +22,8 @@ cv::Mat make_dots_frame(cv::Size size, int count, std::uint64_t seed) {
   std::vector<cv::Point2d> centres;
   for (int attempt = 0; attempt < count * 200 && static_cast<int>(centres.size()) < count; ++attempt) {
     const cv::Point2d c(rng.uniform(r + 1, size.width - r - 1), rng.uniform(r + 1, size.height - r - 1));
-    const bool clear = std::all_of(centres.begin(), centres.end(),
-                                   [&](const cv::Point2d& o) { return cv::norm(o - c) > 2 * r + 4; });
+    const bool clear =
+        std::all_of(centres.begin(), centres.end(), [&](const cv::Point2d& o) { return cv::norm(o - c) > 2 * r + 4; });
     if (clear) centres.push_back(c);
   }
   for (const auto& c : centres) {
@@ -63,6 +62,8 @@ cv::Mat make_dense_frame(cv::Size size, std::uint64_t seed) {
   return out;
 }
 
-int dense_threshold(const cv::Mat& frame) { return static_cast<int>(cv::mean(frame)[0]); }
+int dense_threshold(const cv::Mat& frame) {
+  return static_cast<int>(cv::mean(frame)[0]);
+}
 
 }  // namespace neopipe::bench

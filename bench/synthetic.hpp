@@ -1,9 +1,8 @@
 #pragma once
 // Generated benchmark frames, so every machine measures the same pictures.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 namespace neopipe::bench {
 

@@ -1,12 +1,11 @@
 // Writes the demo video the README's first command runs on: marbles rolling over a dark,
 // unevenly lit table, seen by a slightly noisy camera. Usage: make_demo_video OUT.avi [FRAMES]
 
+#include <cmath>
+#include <cstdio>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-
-#include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -37,7 +36,8 @@ void draw_marble(cv::Mat& img, cv::Point2d c, double r) {
       const double d = std::hypot(x - c.x + 0.3 * r, y - c.y + 0.3 * r) / (1.3 * r);
       const double shade = 150 + 100 * std::max(0.0, 1 - d * d);
       auto& px = img.at<cv::Vec3f>(y, x);
-      const cv::Vec3f colour(static_cast<float>(shade * 0.85), static_cast<float>(shade * 0.95), static_cast<float>(shade));
+      const cv::Vec3f colour(static_cast<float>(shade * 0.85), static_cast<float>(shade * 0.95),
+                             static_cast<float>(shade));
       px = px * static_cast<float>(1 - cover) + colour * static_cast<float>(cover);
     }
   }

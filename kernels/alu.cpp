@@ -11,13 +11,13 @@ namespace neopipe::kernels {
 namespace {
 
 constexpr std::array<std::pair<AluOp, std::string_view>, 8> kNames{{{AluOp::add, "add"},
-                                                                     {AluOp::sub, "sub"},
-                                                                     {AluOp::absdiff, "absdiff"},
-                                                                     {AluOp::min, "min"},
-                                                                     {AluOp::max, "max"},
-                                                                     {AluOp::bit_and, "and"},
-                                                                     {AluOp::bit_or, "or"},
-                                                                     {AluOp::bit_xor, "xor"}}};
+                                                                    {AluOp::sub, "sub"},
+                                                                    {AluOp::absdiff, "absdiff"},
+                                                                    {AluOp::min, "min"},
+                                                                    {AluOp::max, "max"},
+                                                                    {AluOp::bit_and, "and"},
+                                                                    {AluOp::bit_or, "or"},
+                                                                    {AluOp::bit_xor, "xor"}}};
 
 // One loop per operation, with the operation known at compile time, so each loop vectorises.
 template <class F>
@@ -41,8 +41,7 @@ std::optional<AluOp> alu_op_from_string(std::string_view name) {
   return std::nullopt;
 }
 
-void alu_row(AluOp op, const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out,
-             int width) noexcept {
+void alu_row(AluOp op, const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width) noexcept {
   switch (op) {
     case AluOp::add:
       return each(a, b, out, width, [](int p, int q) { return std::min(p + q, 255); });

@@ -1,9 +1,8 @@
 #pragma once
 // Two-input pixel arithmetic and logic: PIPE's ALU between a stage's two images.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string_view>
 
@@ -19,11 +18,9 @@ std::string_view to_string(AluOp op);
 /// "add", "sub", "absdiff", "min", "max", "and", "or", "xor".
 std::optional<AluOp> alu_op_from_string(std::string_view name);
 
-void alu_row(AluOp op, const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out,
-             int width) noexcept;
+void alu_row(AluOp op, const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width) noexcept;
 
 /// dst = a op b on `rows`; a, b and dst are CV_8UC1 of one size.
-void alu(AluOp op, const cv::Mat& a, const cv::Mat& b, cv::Mat& dst,
-         cv::Range rows = cv::Range::all());
+void alu(AluOp op, const cv::Mat& a, const cv::Mat& b, cv::Mat& dst, cv::Range rows = cv::Range::all());
 
 }  // namespace neopipe::kernels

@@ -12,8 +12,12 @@ namespace {
 __extension__ using int128 = __int128;
 
 // Sum of x and of x^2 for x = 0..n-1.
-constexpr std::int64_t sum_to(std::int64_t n) { return n * (n - 1) / 2; }
-constexpr std::int64_t sum_sq_to(std::int64_t n) { return (n - 1) * n * (2 * n - 1) / 6; }
+constexpr std::int64_t sum_to(std::int64_t n) {
+  return n * (n - 1) / 2;
+}
+constexpr std::int64_t sum_sq_to(std::int64_t n) {
+  return (n - 1) * n * (2 * n - 1) / 6;
+}
 
 struct Run {
   int xs;     // first pixel
@@ -162,11 +166,9 @@ Blob to_blob(const BlobMoments& m) noexcept {
   return b;
 }
 
-std::vector<Blob> extract_blobs(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights,
-                                cv::Mat* labels) {
+std::vector<Blob> extract_blobs(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights, cv::Mat* labels) {
   detail::require_type(src, CV_8UC1, "blobs input");
-  detail::require(params.threshold >= -1 && params.threshold <= 255,
-                  "blobs: threshold must lie in -1..255");
+  detail::require(params.threshold >= -1 && params.threshold <= 255, "blobs: threshold must lie in -1..255");
   const cv::Mat& w = weights.empty() ? src : weights;
   detail::require_type(w, CV_8UC1, "blobs weights");
   detail::require_same_size(src, w, "blobs input and weights");

@@ -7,9 +7,8 @@
 // written unless one is asked for. Integer sums are exact, so merging partial results (stripes) in
 // any order gives identical blobs.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "kernels/types.hpp"
@@ -54,7 +53,7 @@ Blob to_blob(const BlobMoments& m) noexcept;
 /// Components of (src > threshold), ordered by their first pixel in raster order.
 /// src is CV_8UC1; `weights` (CV_8UC1, same size) defaults to src. If `labels` is given it receives
 /// a CV_32SC1 label image: 0 for background, i + 1 for the pixels of blob i.
-std::vector<Blob> extract_blobs(const cv::Mat& src, const BlobParams& params,
-                                const cv::Mat& weights = cv::Mat(), cv::Mat* labels = nullptr);
+std::vector<Blob> extract_blobs(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights = cv::Mat(),
+                                cv::Mat* labels = nullptr);
 
 }  // namespace neopipe::kernels

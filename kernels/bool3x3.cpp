@@ -37,18 +37,16 @@ BoolTable hit_or_miss_table(std::string_view pattern) {
     } else if (c == '0') {
       must_clear |= 1U << k;
     } else if (c != 'x' && c != 'X' && c != '.') {
-      throw KernelError(std::string("hit-or-miss pattern: unexpected character '") + c +
-                        "' (use 1, 0 or x)");
+      throw KernelError(std::string("hit-or-miss pattern: unexpected character '") + c + "' (use 1, 0 or x)");
     }
     ++k;
   }
   if (k != 9) throw KernelError("hit-or-miss pattern must have nine cells, got " + std::to_string(k));
-  return BoolTable::from_function(
-      [=](unsigned i) { return (i & must_set) == must_set && (i & must_clear) == 0; });
+  return BoolTable::from_function([=](unsigned i) { return (i & must_set) == must_set && (i & must_clear) == 0; });
 }
 
-void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::uint8_t* out, int width, const Bool3x3& k) noexcept {
+void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::uint8_t* out,
+                 int width, const Bool3x3& k) noexcept {
   const auto& bits = k.table.bits();
   const Border border{k.border.mode, k.border.value != 0 ? 1 : 0};
   const auto pixel = [&](int x, const std::array<int, 9>& p) {

@@ -11,12 +11,11 @@
 //
 // A pixel is "set" when it is non-zero. Output pixels are `high` (default 255) or 0.
 
-#include <opencv2/core/mat.hpp>
-
 #include <array>
 #include <bitset>
 #include <cstdint>
 #include <functional>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <string_view>
 
@@ -54,8 +53,8 @@ struct Bool3x3 {
   Border border{};
 };
 
-void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::uint8_t* out, int width, const Bool3x3& k) noexcept;
+void bool3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::uint8_t* out,
+                 int width, const Bool3x3& k) noexcept;
 
 /// src and dst CV_8UC1; dst must not share memory with src (KernelError).
 void bool3x3(const cv::Mat& src, cv::Mat& dst, const Bool3x3& k, cv::Range rows = cv::Range::all());

@@ -15,8 +15,8 @@ Out saturate(int v) {
 }
 
 template <class Out>
-void row_impl(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, Out* out,
-              int width, const Conv3x3& k) {
+void row_impl(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, Out* out, int width,
+              const Conv3x3& k) {
   const auto& w = k.weights;
   const int shift = k.shift;
   const int bias = shift > 0 ? 1 << (shift - 1) : 0;
@@ -29,9 +29,8 @@ void row_impl(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_
                           out[x] = finish(acc);
                         });
   for (int x = 1; x < width - 1; ++x) {
-    const int acc = w[0] * up[x - 1] + w[1] * up[x] + w[2] * up[x + 1] + w[3] * mid[x - 1] +
-                    w[4] * mid[x] + w[5] * mid[x + 1] + w[6] * down[x - 1] + w[7] * down[x] +
-                    w[8] * down[x + 1];
+    const int acc = w[0] * up[x - 1] + w[1] * up[x] + w[2] * up[x + 1] + w[3] * mid[x - 1] + w[4] * mid[x] +
+                    w[5] * mid[x + 1] + w[6] * down[x - 1] + w[7] * down[x] + w[8] * down[x + 1];
     out[x] = finish(acc);
   }
 }
@@ -56,13 +55,13 @@ void validate(const Conv3x3& k) {
                   "conv3x3: the constant border value must lie in 0..255");
 }
 
-void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::uint8_t* out, int width, const Conv3x3& k) noexcept {
+void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::uint8_t* out,
+                 int width, const Conv3x3& k) noexcept {
   row_impl(up, mid, down, out, width, k);
 }
 
-void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::int16_t* out, int width, const Conv3x3& k) noexcept {
+void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::int16_t* out,
+                 int width, const Conv3x3& k) noexcept {
   row_impl(up, mid, down, out, width, k);
 }
 
@@ -71,8 +70,7 @@ void conv3x3(const cv::Mat& src, cv::Mat& dst, const Conv3x3& k, int dst_type, c
   detail::require_distinct(src, dst, "conv3x3");
   validate(k);
   if (rows != cv::Range::all() && !dst.empty()) dst_type = dst.type();
-  detail::require(dst_type == CV_8UC1 || dst_type == CV_16SC1,
-                  "conv3x3: output must be CV_8UC1 or CV_16SC1");
+  detail::require(dst_type == CV_8UC1 || dst_type == CV_16SC1, "conv3x3: output must be CV_8UC1 or CV_16SC1");
   const cv::Range r = detail::output_rows(dst, src.size(), dst_type, rows);
   if (dst_type == CV_8UC1) {
     frame_impl<std::uint8_t>(src, dst, k, r);
@@ -81,8 +79,14 @@ void conv3x3(const cv::Mat& src, cv::Mat& dst, const Conv3x3& k, int dst_type, c
   }
 }
 
-Conv3x3 smooth3x3() { return {{1, 2, 1, 2, 4, 2, 1, 2, 1}, 4, {}}; }
-Conv3x3 sobel_x3x3() { return {{-1, 0, 1, -2, 0, 2, -1, 0, 1}, 0, {}}; }
-Conv3x3 sobel_y3x3() { return {{-1, -2, -1, 0, 0, 0, 1, 2, 1}, 0, {}}; }
+Conv3x3 smooth3x3() {
+  return {{1, 2, 1, 2, 4, 2, 1, 2, 1}, 4, {}};
+}
+Conv3x3 sobel_x3x3() {
+  return {{-1, 0, 1, -2, 0, 2, -1, 0, 1}, 0, {}};
+}
+Conv3x3 sobel_y3x3() {
+  return {{-1, -2, -1, 0, 0, 0, 1, 2, 1}, 0, {}};
+}
 
 }  // namespace neopipe::kernels

@@ -2,10 +2,9 @@
 // 3x3 arithmetic neighbourhood: out = saturate(round(sum(w_i * p_i) / 2^shift)). PIPE's real-time
 // convolution stage: integer weights, a right shift for scale, saturation to the output type.
 
-#include <opencv2/core/mat.hpp>
-
 #include <array>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 #include "kernels/types.hpp"
 
@@ -25,10 +24,10 @@ struct Conv3x3 {
 void validate(const Conv3x3& k);
 
 /// One output row from the three input rows around it (up, mid, down).
-void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::uint8_t* out, int width, const Conv3x3& k) noexcept;
-void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down,
-                 std::int16_t* out, int width, const Conv3x3& k) noexcept;
+void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::uint8_t* out,
+                 int width, const Conv3x3& k) noexcept;
+void conv3x3_row(const std::uint8_t* up, const std::uint8_t* mid, const std::uint8_t* down, std::int16_t* out,
+                 int width, const Conv3x3& k) noexcept;
 
 /// src CV_8UC1; dst CV_8UC1 (saturated to 0..255) or CV_16SC1 (saturated to -32768..32767).
 /// dst must not share memory with src (KernelError).

@@ -2,9 +2,8 @@
 // 16-bit signed to 8-bit: out = saturate(round((abs ? |v| : v) / 2^shift)). Brings the 16-bit
 // output of a 3x3 arithmetic stage (e.g. a Sobel gradient) back into 8-bit images.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 #include "kernels/types.hpp"
 

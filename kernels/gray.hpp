@@ -1,9 +1,8 @@
 #pragma once
 // Colour to gray, ITU-R BT.601 luma, bit-exact with cv::cvtColor(COLOR_BGR2GRAY) on 8-bit images.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 #include "kernels/types.hpp"
 

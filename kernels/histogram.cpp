@@ -13,8 +13,7 @@ void accumulate_histogram(const cv::Mat& src, Histogram& hist, cv::Range rows) {
   // Four interleaved count tables break the store-to-load dependency on runs of equal pixels.
   std::array<std::array<std::uint32_t, 256>, 4> partial{};
   // Flush to the 64-bit totals before a 32-bit count could overflow.
-  const std::int64_t flush_every =
-      std::max<std::int64_t>(1, std::int64_t{0xFFFFFFFF} / std::max(src.cols, 1));
+  const std::int64_t flush_every = std::max<std::int64_t>(1, std::int64_t{0xFFFFFFFF} / std::max(src.cols, 1));
   for (int y = y0; y < y1; ++y) {
     const auto* p = src.ptr<std::uint8_t>(y);
     int x = 0;

@@ -1,10 +1,9 @@
 #pragma once
 // Histogram of an 8-bit image: PIPE's iconic-to-symbolic reduction of a frame to 256 counts.
 
-#include <opencv2/core/mat.hpp>
-
 #include <array>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 #include "kernels/types.hpp"
 

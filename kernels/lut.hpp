@@ -1,10 +1,9 @@
 #pragma once
 // Point look-up table: out = table[in]. PIPE's per-stage LUT; any function of one 8-bit pixel.
 
-#include <opencv2/core/mat.hpp>
-
 #include <array>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 
 #include "kernels/types.hpp"
 

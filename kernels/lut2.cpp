@@ -16,8 +16,7 @@ Lut2 Lut2::from_function(const std::function<std::uint8_t(int, int)>& f) {
   return t;
 }
 
-void lut2_row(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width,
-              const Lut2& table) noexcept {
+void lut2_row(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width, const Lut2& table) noexcept {
   const std::uint8_t* t = table.data();
   for (int x = 0; x < width; ++x) out[x] = t[(static_cast<unsigned>(a[x]) << 8) | b[x]];
 }

@@ -2,10 +2,9 @@
 // Two-input table: out = table[a][b], any function of two 8-bit pixels (PIPE's 64K-entry
 // "two-valued function"). A recursive running average is one such table.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <functional>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "kernels/types.hpp"
@@ -31,11 +30,9 @@ class Lut2 {
   std::vector<std::uint8_t> table_;  // 65,536 entries, row a, column b
 };
 
-void lut2_row(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width,
-              const Lut2& table) noexcept;
+void lut2_row(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width, const Lut2& table) noexcept;
 
 /// dst = table(a, b) on `rows`; a, b and dst are CV_8UC1 of one size.
-void lut2(const cv::Mat& a, const cv::Mat& b, cv::Mat& dst, const Lut2& table,
-          cv::Range rows = cv::Range::all());
+void lut2(const cv::Mat& a, const cv::Mat& b, cv::Mat& dst, const Lut2& table, cv::Range rows = cv::Range::all());
 
 }  // namespace neopipe::kernels

@@ -10,8 +10,7 @@ void require(bool ok, const char* what) {
 
 void require_type(const cv::Mat& m, int type, const char* what) {
   if (m.empty() || m.type() != type || m.dims != 2) {
-    throw KernelError(std::string(what) + ": expected a non-empty 2-D image of type " +
-                      cv::typeToString(type) +
+    throw KernelError(std::string(what) + ": expected a non-empty 2-D image of type " + cv::typeToString(type) +
                       (m.empty() ? std::string(", got an empty one") : ", got " + cv::typeToString(m.type())));
   }
 }
@@ -32,8 +31,7 @@ cv::Range output_rows(cv::Mat& dst, cv::Size size, int type, cv::Range rows) {
     return {0, size.height};
   }
   if (dst.size() != size || dst.type() != type) {
-    throw KernelError("output image must be allocated with the input's size and type " +
-                      cv::typeToString(type));
+    throw KernelError("output image must be allocated with the input's size and type " + cv::typeToString(type));
   }
   return {std::max(rows.start, 0), std::min(rows.end, size.height)};
 }

@@ -3,10 +3,9 @@
 // slide down the image, with the vertical border applied. The horizontal border is applied by each
 // row function at its first and last pixel, so the interior loop stays branch-free.
 
-#include <opencv2/core/mat.hpp>
-
 #include <algorithm>
 #include <array>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "kernels/types.hpp"

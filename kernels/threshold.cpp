@@ -7,8 +7,7 @@
 
 namespace neopipe::kernels {
 
-void threshold_row(const std::uint8_t* in, std::uint8_t* out, int width, std::uint8_t t,
-                   std::uint8_t high) noexcept {
+void threshold_row(const std::uint8_t* in, std::uint8_t* out, int width, std::uint8_t t, std::uint8_t high) noexcept {
   for (int x = 0; x < width; ++x) out[x] = in[x] > t ? high : std::uint8_t{0};
 }
 

@@ -14,7 +14,9 @@ namespace neopipe::kernels {
 enum class Footprint { point, neighbourhood3x3, frame };
 
 /// Rows of input a kernel reads above and below each output row.
-constexpr int halo_rows(Footprint f) { return f == Footprint::neighbourhood3x3 ? 1 : 0; }
+constexpr int halo_rows(Footprint f) {
+  return f == Footprint::neighbourhood3x3 ? 1 : 0;
+}
 
 /// What a neighbourhood kernel sees outside the image.
 ///  - replicate: the nearest edge pixel (OpenCV's BORDER_REPLICATE). For erode and dilate this is

@@ -9,8 +9,8 @@
 namespace neopipe::pipeline {
 
 struct BlobGraphOptions {
-  std::optional<int> threshold;  ///< fixed T (value > T is foreground); none = Otsu per frame
-  int connectivity = 8;          ///< 4 or 8
+  std::optional<int> threshold;      ///< fixed T (value > T is foreground); none = Otsu per frame
+  int connectivity = 8;              ///< 4 or 8
   PortType source = PortType::bgr8;  ///< bgr8 frames go through BT.601 gray first
 };
 

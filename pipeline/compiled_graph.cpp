@@ -35,8 +35,8 @@ struct Resolver {
     for (size_t k = 0; k < outs.size(); ++k) {
       if (outs[k].name == ref.port) return {it->second, static_cast<int>(k)};
     }
-    throw GraphError(ref.where, "node '" + ref.node + "' has no output '" + ref.port +
-                                    "' (outputs: " + join_port_names(outs) + ")");
+    throw GraphError(
+        ref.where, "node '" + ref.node + "' has no output '" + ref.port + "' (outputs: " + join_port_names(outs) + ")");
   }
 
   PortType type(PortAddress a) const {
@@ -47,9 +47,12 @@ struct Resolver {
 // The constants a delayed input of this type can start from.
 std::pair<int, int> fill_range(PortType t) {
   switch (t) {
-    case PortType::s16: return {-32768, 32767};
-    case PortType::histogram: return {0, std::numeric_limits<int>::max()};
-    default: return {0, 255};
+    case PortType::s16:
+      return {-32768, 32767};
+    case PortType::histogram:
+      return {0, std::numeric_limits<int>::max()};
+    default:
+      return {0, 255};
   }
 }
 
@@ -61,7 +64,8 @@ struct Dependency {
   SourceLocation where;
 };
 
-[[noreturn]] void report_cycle(const GraphSpec& spec, const std::vector<Dependency>& deps, const std::vector<int>& left) {
+[[noreturn]] void report_cycle(const GraphSpec& spec, const std::vector<Dependency>& deps,
+                               const std::vector<int>& left) {
   // Walk backwards from any node left over by the topological sort: each has a producer that is
   // also left over, so the walk must revisit a node, and the revisited stretch is a cycle.
   const std::set<int> remaining(left.begin(), left.end());
@@ -124,7 +128,9 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
     impls.push_back(k->make(ctx));
     params.finish();
     if (n.kernel == nodes::kSourceKernel) {
-      if (source >= 0) throw GraphError(n.where, "a graph has one 'source' node; '" + spec.nodes[static_cast<size_t>(source)].name + "' is already one");
+      if (source >= 0)
+        throw GraphError(n.where, "a graph has one 'source' node; '" + spec.nodes[static_cast<size_t>(source)].name +
+                                      "' is already one");
       source = static_cast<int>(impls.size()) - 1;
     }
   }
@@ -186,8 +192,8 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
     }
     for (size_t k = 0; k < decls.size(); ++k) {
       if (!bound[k] && !decls[k].optional) {
-        throw GraphError(n.where, "input '" + decls[k].name + "' of node '" + n.name + "' (" + n.kernel +
-                                      ") is not connected");
+        throw GraphError(n.where,
+                         "input '" + decls[k].name + "' of node '" + n.name + "' (" + n.kernel + ") is not connected");
       }
     }
   }
@@ -208,7 +214,8 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
     for (size_t k = 0; k < outs.size(); ++k) {
       if (consumed.count({static_cast<int>(i), static_cast<int>(k)}) == 0) {
         throw GraphError(spec.nodes[i].where, "dangling port: output '" + outs[k].name + "' of node '" +
-                                                  spec.nodes[i].name + "' goes nowhere (connect it or list it under outputs)");
+                                                  spec.nodes[i].name +
+                                                  "' goes nowhere (connect it or list it under outputs)");
       }
     }
   }
@@ -247,7 +254,8 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
   };
   for (const int old : order) {
     const auto o = static_cast<size_t>(old);
-    CompiledNode cn{spec.nodes[o].name, spec.nodes[o].kernel, std::move(impls[o]), std::move(inputs[o]), spec.nodes[o].where};
+    CompiledNode cn{spec.nodes[o].name, spec.nodes[o].kernel, std::move(impls[o]), std::move(inputs[o]),
+                    spec.nodes[o].where};
     for (auto& in : cn.inputs) {
       in.from = renumber(in.from);
       in.initial_from = renumber(in.initial_from);

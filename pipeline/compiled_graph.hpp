@@ -21,10 +21,10 @@ struct PortAddress {
 };
 
 struct CompiledInput {
-  PortAddress from;             ///< invalid for an unconnected optional input
-  bool delayed = false;         ///< reads `from` as it was one frame earlier
-  int initial_fill = 0;         ///< delayed, first frame: a constant ...
-  PortAddress initial_from;     ///< ... or, when valid, this port's value on the first frame
+  PortAddress from;          ///< invalid for an unconnected optional input
+  bool delayed = false;      ///< reads `from` as it was one frame earlier
+  int initial_fill = 0;      ///< delayed, first frame: a constant ...
+  PortAddress initial_from;  ///< ... or, when valid, this port's value on the first frame
 };
 
 struct CompiledNode {

@@ -24,7 +24,9 @@ class NodeError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string size_text(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+std::string size_text(cv::Size s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
 
 }  // namespace
 
@@ -238,9 +240,10 @@ class Executor::Impl {
         if (!in.delayed) {
           inputs[k] = &s.values[static_cast<size_t>(in.from.node)][static_cast<size_t>(in.from.port)];
         } else if (t.seq == 0) {
-          inputs[k] = in.initial_from.valid()
-                          ? &s.values[static_cast<size_t>(in.initial_from.node)][static_cast<size_t>(in.initial_from.port)]
-                          : &initial_values_[i][k];
+          inputs[k] =
+              in.initial_from.valid()
+                  ? &s.values[static_cast<size_t>(in.initial_from.node)][static_cast<size_t>(in.initial_from.port)]
+                  : &initial_values_[i][k];
         } else {
           inputs[k] = &slot(t.seq - 1).values[static_cast<size_t>(in.from.node)][static_cast<size_t>(in.from.port)];
         }
@@ -254,7 +257,8 @@ class Executor::Impl {
       err = std::make_exception_ptr(NodeError("frame " + std::to_string(s.index) + ", node '" + node.name + "' (" +
                                               node.kernel + "): " + e.what()));
     } catch (...) {
-      err = std::make_exception_ptr(NodeError("frame " + std::to_string(s.index) + ", node '" + node.name + "' failed"));
+      err =
+          std::make_exception_ptr(NodeError("frame " + std::to_string(s.index) + ", node '" + node.name + "' failed"));
     }
     // This task stays counted in running_ until its very last touch of the executor, so the
     // executor (waiting for running_ == 0 in its destructor) cannot vanish while the task still
@@ -315,7 +319,8 @@ class Executor::Impl {
     FrameResult r;
     r.index = s.index;
     r.input = s.input;
-    for (const auto& o : graph_.outputs()) r.outputs.push_back(s.values[static_cast<size_t>(o.node)][static_cast<size_t>(o.port)]);
+    for (const auto& o : graph_.outputs())
+      r.outputs.push_back(s.values[static_cast<size_t>(o.node)][static_cast<size_t>(o.port)]);
     r.latency_s = std::chrono::duration<double>(Clock::now() - s.submitted).count();
     finished_.emplace(seq, std::move(r));
     while (complete_prefix_ < next_seq_ && slot(complete_prefix_).seq == complete_prefix_ &&
@@ -368,11 +373,11 @@ class Executor::Impl {
   tbb::global_control control_;
   tbb::task_arena arena_;
 
-  std::vector<std::vector<int>> consumers_now_;    // per producer: consumer of each non-delayed edge
-  std::vector<std::vector<int>> consumers_next_;   // per producer: consumer of each delayed edge
-  std::vector<std::vector<int>> consumers_first_;  // per producer: consumer of each initial-value edge
-  std::vector<std::vector<Value>> initial_values_; // [node][input]: constant first-frame values
-  std::vector<bool> in_order_;                     // per node: waits for its own previous frame
+  std::vector<std::vector<int>> consumers_now_;     // per producer: consumer of each non-delayed edge
+  std::vector<std::vector<int>> consumers_next_;    // per producer: consumer of each delayed edge
+  std::vector<std::vector<int>> consumers_first_;   // per producer: consumer of each initial-value edge
+  std::vector<std::vector<Value>> initial_values_;  // [node][input]: constant first-frame values
+  std::vector<bool> in_order_;                      // per node: waits for its own previous frame
   cv::Size size_;
   bool configured_ = false;
 
@@ -392,13 +397,27 @@ class Executor::Impl {
 Executor::Executor(CompiledGraph graph, ExecutorOptions options, ResultHandler on_result)
     : impl_(std::make_unique<Impl>(std::move(graph), options, std::move(on_result))) {}
 Executor::~Executor() = default;
-void Executor::submit(std::int64_t index, const cv::Mat& frame) { impl_->submit(index, frame, true); }
-bool Executor::try_submit(std::int64_t index, const cv::Mat& frame) { return impl_->submit(index, frame, false); }
-void Executor::poll() { impl_->poll(); }
-void Executor::finish() { impl_->finish(); }
-const CompiledGraph& Executor::graph() const { return impl_->graph(); }
-int Executor::threads() const { return impl_->threads(); }
-int Executor::frames_in_flight() const { return impl_->frames_in_flight(); }
+void Executor::submit(std::int64_t index, const cv::Mat& frame) {
+  impl_->submit(index, frame, true);
+}
+bool Executor::try_submit(std::int64_t index, const cv::Mat& frame) {
+  return impl_->submit(index, frame, false);
+}
+void Executor::poll() {
+  impl_->poll();
+}
+void Executor::finish() {
+  impl_->finish();
+}
+const CompiledGraph& Executor::graph() const {
+  return impl_->graph();
+}
+int Executor::threads() const {
+  return impl_->threads();
+}
+int Executor::frames_in_flight() const {
+  return impl_->frames_in_flight();
+}
 
 std::vector<FrameResult> run_frames(CompiledGraph graph, const std::vector<cv::Mat>& frames, ExecutorOptions options) {
   std::vector<FrameResult> results;

@@ -7,11 +7,10 @@
 // Threading: one driver thread (the caller: it reads frames and consumes results) plus `threads`
 // oneTBB workers in the executor's own arena.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "pipeline/compiled_graph.hpp"
@@ -26,10 +25,10 @@ struct ExecutorOptions {
 };
 
 struct FrameResult {
-  std::int64_t index = 0;       ///< the index the frame was submitted with
-  cv::Mat input;                ///< the frame as submitted
-  std::vector<Value> outputs;   ///< the graph's outputs, in declaration order
-  double latency_s = 0;         ///< submit to completion
+  std::int64_t index = 0;      ///< the index the frame was submitted with
+  cv::Mat input;               ///< the frame as submitted
+  std::vector<Value> outputs;  ///< the graph's outputs, in declaration order
+  double latency_s = 0;        ///< submit to completion
 };
 
 class Executor {

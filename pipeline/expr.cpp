@@ -1,8 +1,8 @@
 #include "pipeline/expr.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -253,7 +253,9 @@ Expr Expr::parse(std::string_view text, const std::vector<std::string>& variable
   return e;
 }
 
-double Expr::eval(std::span<const double> values) const { return root_->eval(values); }
+double Expr::eval(std::span<const double> values) const {
+  return root_->eval(values);
+}
 
 int to_pixel(double v) {
   if (std::isnan(v)) return 0;

@@ -16,8 +16,7 @@ namespace neopipe::pipeline {
 
 class ExprError : public std::runtime_error {
  public:
-  ExprError(const std::string& message, size_t column)
-      : std::runtime_error(message), column_(column) {}
+  ExprError(const std::string& message, size_t column) : std::runtime_error(message), column_(column) {}
   /// 1-based position in the expression text.
   size_t column() const { return column_; }
 

@@ -11,9 +11,8 @@ namespace {
 
 bool is_identifier(std::string_view s) {
   if (s.empty() || (std::isalpha(static_cast<unsigned char>(s[0])) == 0 && s[0] != '_')) return false;
-  return std::all_of(s.begin(), s.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
-  });
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-'; });
 }
 
 SourceLocation at(const std::string& file, const YAML::Mark& m) {
@@ -171,7 +170,9 @@ GraphSpec load_graph_spec(const std::string& path) {
   return parse_graph_spec(text.str(), path);
 }
 
-GraphBuilder::GraphBuilder(std::string origin) { spec_.origin = std::move(origin); }
+GraphBuilder::GraphBuilder(std::string origin) {
+  spec_.origin = std::move(origin);
+}
 
 GraphBuilder& GraphBuilder::node(const std::string& name, const std::string& kernel, const YAML::Node& params) {
   NodeSpec n;
@@ -184,8 +185,7 @@ GraphBuilder& GraphBuilder::node(const std::string& name, const std::string& ker
   return *this;
 }
 
-GraphBuilder& GraphBuilder::node(const std::string& name, const std::string& kernel,
-                                 const std::string& params_yaml) {
+GraphBuilder& GraphBuilder::node(const std::string& name, const std::string& kernel, const std::string& params_yaml) {
   return node(name, kernel, YAML::Load(params_yaml));
 }
 
@@ -193,8 +193,8 @@ NodeSpec& GraphBuilder::consumer(const std::string& to, std::string& input) {
   const SourceLocation where{spec_.origin, 0, 0};
   const PortRef ref = PortRef::parse(to, where);
   if (ref.port.empty()) throw GraphError(where, "connect(): the target must be node.input, got '" + to + "'");
-  const auto it = std::find_if(spec_.nodes.begin(), spec_.nodes.end(),
-                               [&](const NodeSpec& n) { return n.name == ref.node; });
+  const auto it =
+      std::find_if(spec_.nodes.begin(), spec_.nodes.end(), [&](const NodeSpec& n) { return n.name == ref.node; });
   if (it == spec_.nodes.end()) throw GraphError(where, "connect(): no node named '" + ref.node + "'");
   input = ref.port;
   return *it;

@@ -4,7 +4,6 @@
 // footprint). The scheduler decides the rest: which stripes, on which threads, which frames at once.
 
 #include <opencv2/core/mat.hpp>
-
 #include <span>
 #include <string>
 #include <variant>
@@ -24,8 +23,8 @@ struct PortDecl {
 /// A node's view of one frame: its inputs (computed) and outputs (to fill).
 class NodeIO {
  public:
-  NodeIO(std::span<const Value* const> inputs, std::span<Value* const> outputs,
-         std::span<const PortDecl> output_decls, cv::Size frame_size)
+  NodeIO(std::span<const Value* const> inputs, std::span<Value* const> outputs, std::span<const PortDecl> output_decls,
+         cv::Size frame_size)
       : in_(inputs), out_(outputs), out_decls_(output_decls), size_(frame_size) {}
 
   cv::Size frame_size() const { return size_; }

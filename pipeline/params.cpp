@@ -26,9 +26,13 @@ YAML::Node ParamReader::value(const std::string& name) {
   return p[name];
 }
 
-bool ParamReader::has(const std::string& name) { return static_cast<bool>(value(name)); }
+bool ParamReader::has(const std::string& name) {
+  return static_cast<bool>(value(name));
+}
 
-YAML::Node ParamReader::raw(const std::string& name) { return value(name); }
+YAML::Node ParamReader::raw(const std::string& name) {
+  return value(name);
+}
 
 SourceLocation ParamReader::where(const std::string& name) const {
   if (params_ && params_.IsMap()) {
@@ -110,8 +114,8 @@ std::vector<int> ParamReader::get_int_list(const std::string& name, size_t count
   for (const auto& e : v) {
     long long x = 0;
     if (!e.IsScalar() || !parse_number(e.Scalar(), x) || x < min || x > max) {
-      fail(name, "entry " + std::to_string(out.size()) + " must be an integer in " + std::to_string(min) +
-                     ".." + std::to_string(max));
+      fail(name, "entry " + std::to_string(out.size()) + " must be an integer in " + std::to_string(min) + ".." +
+                     std::to_string(max));
     }
     out.push_back(static_cast<int>(x));
   }

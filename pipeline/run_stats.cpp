@@ -10,16 +10,18 @@ namespace neopipe::pipeline {
 double RunStats::latency_quantile(double q) const {
   if (latencies_s.empty()) return 0;
   std::vector<double> v = latencies_s;
-  const auto rank = static_cast<size_t>(std::clamp(std::ceil(q * static_cast<double>(v.size())), 1.0,
-                                                   static_cast<double>(v.size()))) - 1;
+  const auto rank = static_cast<size_t>(
+                        std::clamp(std::ceil(q * static_cast<double>(v.size())), 1.0, static_cast<double>(v.size()))) -
+                    1;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank), v.end());
   return v[rank];
 }
 
 std::string RunStats::summary() const {
-  std::string s = fmt::format("{} frames, {} dropped, {} blobs in {:.3f} s ({:.1f} frames/s); latency p50 {:.2f} ms, p99 {:.2f} ms",
-                              frames_processed, frames_dropped, blobs, seconds, frames_per_second(),
-                              1e3 * latency_quantile(0.5), 1e3 * latency_quantile(0.99));
+  std::string s =
+      fmt::format("{} frames, {} dropped, {} blobs in {:.3f} s ({:.1f} frames/s); latency p50 {:.2f} ms, p99 {:.2f} ms",
+                  frames_processed, frames_dropped, blobs, seconds, frames_per_second(), 1e3 * latency_quantile(0.5),
+                  1e3 * latency_quantile(0.99));
   if (realtime) s += fmt::format("; reader lag max {:.1f} ms", 1e3 * max_reader_lag_s);
   if (interrupted) s += " (interrupted)";
   return s;

@@ -12,11 +12,11 @@ struct RunStats {
   std::int64_t frames_processed = 0;  ///< frames whose results were delivered
   std::int64_t frames_dropped = 0;    ///< real-time mode only
   std::int64_t blobs = 0;
-  double seconds = 0;                 ///< wall time from the first read to the last result
-  std::vector<double> latencies_s;    ///< per processed frame, submit to result
+  double seconds = 0;               ///< wall time from the first read to the last result
+  std::vector<double> latencies_s;  ///< per processed frame, submit to result
   bool interrupted = false;
-  bool realtime = false;           ///< paced to the source's frame rate
-  double max_reader_lag_s = 0;     ///< real-time: how far reading fell behind the frames' arrival
+  bool realtime = false;        ///< paced to the source's frame rate
+  double max_reader_lag_s = 0;  ///< real-time: how far reading fell behind the frames' arrival
 
   double frames_per_second() const { return seconds > 0 ? static_cast<double>(frames_processed) / seconds : 0; }
   /// The q-quantile (0..1) of the latencies, nearest rank; 0 with no frames.

@@ -8,7 +8,9 @@ namespace neopipe::pipeline {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-bool stopped(const StreamOptions& o) { return o.stop != nullptr && o.stop->load(); }
+bool stopped(const StreamOptions& o) {
+  return o.stop != nullptr && o.stop->load();
+}
 
 void read_all(io::FrameSource& source, Executor& ex, const StreamOptions& o, RunStats& stats) {
   while (!stopped(o)) {

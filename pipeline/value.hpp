@@ -2,7 +2,6 @@
 // What flows along the graph's edges: typed port values.
 
 #include <opencv2/core/mat.hpp>
-
 #include <optional>
 #include <string_view>
 #include <variant>

@@ -46,8 +46,7 @@ cv::Mat lut(const cv::Mat& src, const Lut& table) {
 }
 
 cv::Mat threshold(const cv::Mat& src, int t, std::uint8_t high) {
-  return per_pixel(src.size(), CV_8UC1,
-                   [&](int x, int y) { return src.at<std::uint8_t>(y, x) > t ? high : 0; });
+  return per_pixel(src.size(), CV_8UC1, [&](int x, int y) { return src.at<std::uint8_t>(y, x) > t ? high : 0; });
 }
 
 cv::Mat alu(AluOp op, const cv::Mat& a, const cv::Mat& b) {
@@ -55,23 +54,30 @@ cv::Mat alu(AluOp op, const cv::Mat& a, const cv::Mat& b) {
     const int p = a.at<std::uint8_t>(y, x);
     const int q = b.at<std::uint8_t>(y, x);
     switch (op) {
-      case AluOp::add: return p + q;  // per_pixel saturates
-      case AluOp::sub: return p - q;
-      case AluOp::absdiff: return std::abs(p - q);
-      case AluOp::min: return std::min(p, q);
-      case AluOp::max: return std::max(p, q);
-      case AluOp::bit_and: return p & q;
-      case AluOp::bit_or: return p | q;
-      case AluOp::bit_xor: return p ^ q;
+      case AluOp::add:
+        return p + q;  // per_pixel saturates
+      case AluOp::sub:
+        return p - q;
+      case AluOp::absdiff:
+        return std::abs(p - q);
+      case AluOp::min:
+        return std::min(p, q);
+      case AluOp::max:
+        return std::max(p, q);
+      case AluOp::bit_and:
+        return p & q;
+      case AluOp::bit_or:
+        return p | q;
+      case AluOp::bit_xor:
+        return p ^ q;
     }
     return 0;
   });
 }
 
 cv::Mat lut2(const cv::Mat& a, const cv::Mat& b, const Lut2& table) {
-  return per_pixel(a.size(), CV_8UC1, [&](int x, int y) {
-    return table(a.at<std::uint8_t>(y, x), b.at<std::uint8_t>(y, x));
-  });
+  return per_pixel(a.size(), CV_8UC1,
+                   [&](int x, int y) { return table(a.at<std::uint8_t>(y, x), b.at<std::uint8_t>(y, x)); });
 }
 
 cv::Mat bgr_to_gray(const cv::Mat& bgr) {

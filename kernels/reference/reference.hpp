@@ -2,9 +2,8 @@
 // Plain scalar references for every kernel: one pixel at a time, borders through one accessor,
 // written for obviousness rather than speed. The tests hold the real kernels to these.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
 #include "kernels/alu.hpp"

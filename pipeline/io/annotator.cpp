@@ -1,12 +1,12 @@
 #include "pipeline/io/annotator.hpp"
 
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "pipeline/io/frame_source.hpp"
@@ -37,10 +37,14 @@ cv::Mat draw_blobs(const cv::Mat& input, const BlobList& blobs) {
 }
 
 Annotator::Annotator(std::string path, double fps, bool single_frame)
-    : path_(std::move(path)), fps_(fps > 0 ? fps : 30), single_frame_(single_frame), video_(!has_image_extension(path_)) {
+    : path_(std::move(path)),
+      fps_(fps > 0 ? fps : 30),
+      single_frame_(single_frame),
+      video_(!has_image_extension(path_)) {
   const std::string ext = fs::path(path_).extension().string();
   if (video_ && ext != ".mp4" && ext != ".avi" && ext != ".mkv" && ext != ".mov") {
-    throw std::runtime_error(path_ + ": --annotate writes a video (.mp4, .avi, .mkv, .mov) or images (.png, .jpg, ...)");
+    throw std::runtime_error(path_ +
+                             ": --annotate writes a video (.mp4, .avi, .mkv, .mov) or images (.png, .jpg, ...)");
   }
 }
 
@@ -50,14 +54,16 @@ void Annotator::write(std::int64_t frame, const cv::Mat& input, const BlobList& 
     std::string target = path_;
     if (!single_frame_) {
       const fs::path p(path_);
-      target = (p.parent_path() / fmt::format("{}_{:06d}{}", p.stem().string(), frame, p.extension().string())).string();
+      target =
+          (p.parent_path() / fmt::format("{}_{:06d}{}", p.stem().string(), frame, p.extension().string())).string();
     }
     if (!cv::imwrite(target, img)) throw std::runtime_error(target + ": cannot write the annotated image");
     return;
   }
   if (!writer_.isOpened()) {
     const std::string ext = fs::path(path_).extension().string();
-    const int fourcc = ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+    const int fourcc =
+        ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
     if (!writer_.open(path_, cv::CAP_FFMPEG, fourcc, fps_, img.size(), true)) {
       throw std::runtime_error(path_ + ": cannot create the annotated video");
     }

@@ -2,9 +2,8 @@
 // Draws each frame's blobs (bounding box in green, intensity-weighted centroid as a red cross) over
 // the input frame and writes the result as a video or as PNG/JPEG images.
 
-#include <opencv2/videoio.hpp>
-
 #include <cstdint>
+#include <opencv2/videoio.hpp>
 #include <string>
 
 #include "pipeline/value.hpp"

@@ -8,7 +8,9 @@
 
 namespace neopipe::pipeline::io {
 
-std::string size_text(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+std::string size_text(cv::Size s) {
+  return std::to_string(s.width) + "x" + std::to_string(s.height);
+}
 
 void require_readable(const std::string& path) {
   std::ifstream f(path, std::ios::binary);

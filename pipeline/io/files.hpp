@@ -2,7 +2,6 @@
 // Small helpers for messages about files.
 
 #include <opencv2/core/types.hpp>
-
 #include <string>
 
 namespace neopipe::pipeline::io {

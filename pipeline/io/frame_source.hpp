@@ -3,10 +3,9 @@
 // directory). Every failure is a SourceError whose message names the input and the cause, in one
 // line.
 
-#include <opencv2/core/mat.hpp>
-
 #include <cstdint>
 #include <memory>
+#include <opencv2/core/mat.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>

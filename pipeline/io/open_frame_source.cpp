@@ -1,9 +1,8 @@
-#include <opencv2/imgcodecs.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <system_error>
 
 #include "pipeline/io/files.hpp"
@@ -16,7 +15,7 @@ namespace fs = std::filesystem;
 
 bool has_image_extension(const std::string& path) {
   static constexpr std::array<const char*, 16> kExt{".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm",
-                                                    ".pbm", ".pnm", ".webp", ".jp2", ".exr", ".hdr", ".sr", ".ras"};
+                                                    ".pbm", ".pnm", ".webp", ".jp2", ".exr", ".hdr",  ".sr",  ".ras"};
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return std::find(kExt.begin(), kExt.end(), ext) != kExt.end();

@@ -1,8 +1,7 @@
 #include "pipeline/io/video_source.hpp"
 
-#include <opencv2/imgproc.hpp>
-
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 
 #include "pipeline/io/files.hpp"
 

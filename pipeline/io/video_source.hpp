@@ -2,7 +2,6 @@
 // Frames from a video file through OpenCV's FFmpeg backend.
 
 #include <opencv2/videoio.hpp>
-
 #include <string>
 
 #include "pipeline/io/frame_source.hpp"

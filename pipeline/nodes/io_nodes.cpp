@@ -1,7 +1,6 @@
 // Nodes that bring images into the graph: the frame source and a constant image from a file.
 
 #include <opencv2/imgcodecs.hpp>
-
 #include <stdexcept>
 
 #include "pipeline/nodes/nodes.hpp"
@@ -20,7 +19,9 @@ class SourceNode final : public Node {
 class ImageNode final : public Node {
  public:
   ImageNode(cv::Mat image, PortType format, std::string path)
-      : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any), image_(std::move(image)), path_(std::move(path)) {}
+      : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any),
+        image_(std::move(image)),
+        path_(std::move(path)) {}
 
   void configure(cv::Size frame_size) override {
     if (image_.size() != frame_size) {
@@ -53,7 +54,8 @@ void register_io_nodes(KernelRegistry& r) {
            const PortType format = format_param(c.params, "gray");
            std::filesystem::path file(*path);
            if (file.is_relative()) file = c.base_dir / file;
-           const cv::Mat img = cv::imread(file.string(), format == PortType::bgr8 ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
+           const cv::Mat img =
+               cv::imread(file.string(), format == PortType::bgr8 ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
            if (img.empty()) c.params.fail("path", "cannot read '" + file.string() + "' as an image");
            return std::make_unique<ImageNode>(img, format, file.string());
          }});

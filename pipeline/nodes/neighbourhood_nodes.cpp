@@ -28,10 +28,9 @@ class Conv3x3Node final : public Node {
 class Bool3x3Node final : public Node {
  public:
   explicit Bool3x3Node(kernels::Bool3x3 k)
-      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3, FrameOrder::any), k_(std::move(k)) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::bool3x3(io.image(0), io.out_image(0), k_, rows);
-  }
+      : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3, FrameOrder::any),
+        k_(std::move(k)) {}
+  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::bool3x3(io.image(0), io.out_image(0), k_, rows); }
 
  private:
   kernels::Bool3x3 k_;
@@ -74,7 +73,7 @@ kernels::BoolTable bool_table_params(ParamReader& p) {
   }
   if (has_op) {
     return p.get_choice("op", "erode", {"erode", "dilate"}) == "erode" ? kernels::erode_table()
-                                                                        : kernels::dilate_table();
+                                                                       : kernels::dilate_table();
   }
   if (has_pattern) {
     const std::string pattern = *p.get_optional_string("pattern");
@@ -112,8 +111,8 @@ void register_neighbourhood_nodes(KernelRegistry& r) {
          "sharpen), weights (9), shift (0..16), output (gray8 | s16), border (replicate | constant), border_value",
          [](NodeContext& c) {
            const kernels::Conv3x3 k = conv_params(c.params);
-           const PortType out = c.params.get_choice("output", "gray8", {"gray8", "s16"}) == "s16" ? PortType::s16
-                                                                                               : PortType::gray8;
+           const PortType out =
+               c.params.get_choice("output", "gray8", {"gray8", "s16"}) == "s16" ? PortType::s16 : PortType::gray8;
            return std::make_unique<Conv3x3Node>(k, out);
          }});
   r.add({"bool3x3",

@@ -20,18 +20,14 @@ using kernels::Footprint;
 class GrayNode final : public Node {
  public:
   GrayNode() : Node({{"in", PortType::bgr8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::bgr_to_gray(io.image(0), io.out_image(0), rows);
-  }
+  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::bgr_to_gray(io.image(0), io.out_image(0), rows); }
 };
 
 class LutNode final : public Node {
  public:
   explicit LutNode(const kernels::Lut& table)
       : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any), table_(table) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::lut(io.image(0), io.out_image(0), table_, rows);
-  }
+  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::lut(io.image(0), io.out_image(0), table_, rows); }
 
  private:
   kernels::Lut table_;
@@ -44,7 +40,9 @@ class ThresholdNode final : public Node {
       // Otsu's T is per-frame state kept in the node, so frames must come one at a time.
       : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
              otsu ? FrameOrder::in_order : FrameOrder::any),
-        t_(fixed), otsu_(otsu), high_(high) {}
+        t_(fixed),
+        otsu_(otsu),
+        high_(high) {}
   void begin_frame(NodeIO& io) override {
     Node::begin_frame(io);
     if (otsu_) t_ = kernels::otsu_threshold(kernels::histogram(io.image(0)));
@@ -62,7 +60,8 @@ class ThresholdNode final : public Node {
 class AluNode final : public Node {
  public:
   explicit AluNode(kernels::AluOp op)
-      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any),
+      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
+             FrameOrder::any),
         op_(op) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::alu(op_, io.image(0), io.image(1), io.out_image(0), rows);
@@ -75,7 +74,8 @@ class AluNode final : public Node {
 class Lut2Node final : public Node {
  public:
   explicit Lut2Node(kernels::Lut2 table)
-      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any),
+      : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
+             FrameOrder::any),
         table_(std::move(table)) {}
   void run_rows(NodeIO& io, cv::Range rows) const override {
     kernels::lut2(io.image(0), io.image(1), io.out_image(0), table_, rows);
@@ -140,9 +140,8 @@ void register_point_nodes(KernelRegistry& r) {
            return std::make_unique<ThresholdNode>(fixed, otsu, static_cast<std::uint8_t>(high));
          }});
   for (const char* op : {"add", "sub", "absdiff", "min", "max", "and", "or", "xor"}) {
-    r.add({op, std::string("two-input ") + op + " of a and b (add and sub saturate)", [op](NodeContext&) {
-             return std::make_unique<AluNode>(*kernels::alu_op_from_string(op));
-           }});
+    r.add({op, std::string("two-input ") + op + " of a and b (add and sub saturate)",
+           [op](NodeContext&) { return std::make_unique<AluNode>(*kernels::alu_op_from_string(op)); }});
   }
   r.add({"lut2", "two-input table out = f(a, b); params: expr (in a and b, e.g. \"(a + 7*b + 4) / 8\")",
          [](NodeContext& c) {

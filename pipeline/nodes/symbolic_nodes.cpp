@@ -12,7 +12,8 @@ using kernels::Footprint;
 
 class HistogramNode final : public Node {
  public:
-  HistogramNode() : Node({{"in", PortType::gray8}}, {{"out", PortType::histogram}}, Footprint::frame, FrameOrder::any) {}
+  HistogramNode()
+      : Node({{"in", PortType::gray8}}, {{"out", PortType::histogram}}, Footprint::frame, FrameOrder::any) {}
   void begin_frame(NodeIO& io) override {
     auto& h = io.out<Histogram>(0);
     h.fill(0);

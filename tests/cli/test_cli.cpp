@@ -15,31 +15,29 @@
 // Every child runs under a timeout so that a hang fails the test instead of blocking the run.
 // Set NEOPIPE_CLI_KEEP_TMP=1 to keep the generated inputs and the outputs for a look afterwards.
 
-#include <gtest/gtest.h>
-
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <chrono>
-#include <cstdint>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <map>
 #include <optional>
 #include <regex>
 #include <set>
@@ -91,8 +89,8 @@ std::string describe(const std::vector<std::string>& args) {
 /// (through files, so a chatty child never blocks on a full pipe). Kills it after kTimeoutSeconds.
 RunResult run_neopipe(const std::vector<std::string>& args) {
   static int counter = 0;
-  const fs::path capture = fs::temp_directory_path() /
-                           ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  const fs::path capture =
+      fs::temp_directory_path() / ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
   const std::string out_path = capture.string() + ".out";
   const std::string err_path = capture.string() + ".err";
 
@@ -405,10 +403,10 @@ void write_video(const fs::path& path, int fourcc, int frames) {
 class Cli : public ::testing::Test {
  protected:
   static inline fs::path root;
-  static inline fs::path mkv;        // FFV1, lossless, kFrames frames
-  static inline fs::path avi;        // MJPG, kFrames frames
-  static inline fs::path png_dir;    // kFrames PNGs of the scene, plus a text file to ignore
-  static inline fs::path examples;   // NEOPIPE_EXAMPLES_DIR
+  static inline fs::path mkv;       // FFV1, lossless, kFrames frames
+  static inline fs::path avi;       // MJPG, kFrames frames
+  static inline fs::path png_dir;   // kFrames PNGs of the scene, plus a text file to ignore
+  static inline fs::path examples;  // NEOPIPE_EXAMPLES_DIR
 
   static void SetUpTestSuite() {
     std::string tmpl = (fs::temp_directory_path() / "neopipe_cli_XXXXXX").string();
@@ -684,7 +682,8 @@ TEST_F(Cli, MjpgVideoCentroidsAreCloseToTheDiskCentres) {
 
 TEST_F(Cli, AnnotateVideoHasEveryFrame) {
   const fs::path video = dir / "out.mp4";
-  const RunResult r = run_neopipe({"run", mkv.string(), "--annotate", video.string(), "--out", (dir / "t.csv").string()});
+  const RunResult r =
+      run_neopipe({"run", mkv.string(), "--annotate", video.string(), "--out", (dir / "t.csv").string()});
   ASSERT_TRUE(succeeded(r));
   cv::VideoCapture cap(video.string(), cv::CAP_FFMPEG);
   ASSERT_TRUE(cap.isOpened()) << video;
@@ -850,69 +849,69 @@ TEST_F(Cli, ImageOfAnotherSizeMidSequenceFailsAfterWritingTheFirstFrames) {
 
 // Graph specs with mistakes on known lines.
 const char* const kUnknownKernel =
-    "name: unknown_kernel\n"           // 1
-    "nodes:\n"                         // 2
-    "  - name: src\n"                  // 3
-    "    kernel: source\n"             // 4
-    "    params: {format: bgr}\n"      // 5
-    "  - name: gray\n"                 // 6
-    "    kernel: grey\n"               // 7  <- col 13
-    "    inputs: {in: src}\n"          // 8
-    "  - name: blobs\n"                // 9
-    "    kernel: blobs\n"              // 10
-    "    params: {threshold: 0}\n"     // 11
-    "    inputs: {in: gray}\n"         // 12
-    "outputs: [blobs]\n";              // 13
+    "name: unknown_kernel\n"        // 1
+    "nodes:\n"                      // 2
+    "  - name: src\n"               // 3
+    "    kernel: source\n"          // 4
+    "    params: {format: bgr}\n"   // 5
+    "  - name: gray\n"              // 6
+    "    kernel: grey\n"            // 7  <- col 13
+    "    inputs: {in: src}\n"       // 8
+    "  - name: blobs\n"             // 9
+    "    kernel: blobs\n"           // 10
+    "    params: {threshold: 0}\n"  // 11
+    "    inputs: {in: gray}\n"      // 12
+    "outputs: [blobs]\n";           // 13
 
 const char* const kYamlSyntax =
-    "name: bad_yaml\n"                 // 1
-    "nodes:\n"                         // 2
-    "  - name: src\n"                  // 3
-    "    kernel: source\n"             // 4
-    "    params: {format: bgr}\n"      // 5
-    "  - name: gray\n"                 // 6
-    "    kernel: gray: gray\n"         // 7  <- a second ':' on one line
-    "    inputs: {in: src}\n"          // 8
-    "outputs: [gray]\n";               // 9
+    "name: bad_yaml\n"             // 1
+    "nodes:\n"                     // 2
+    "  - name: src\n"              // 3
+    "    kernel: source\n"         // 4
+    "    params: {format: bgr}\n"  // 5
+    "  - name: gray\n"             // 6
+    "    kernel: gray: gray\n"     // 7  <- a second ':' on one line
+    "    inputs: {in: src}\n"      // 8
+    "outputs: [gray]\n";           // 9
 
 const char* const kCycle =
-    "name: cycle\n"                    // 1
-    "nodes:\n"                         // 2
-    "  - name: src\n"                  // 3
-    "    kernel: source\n"             // 4
-    "    params: {format: gray}\n"     // 5
-    "  - name: a\n"                    // 6
-    "    kernel: absdiff\n"            // 7
-    "    inputs:\n"                    // 8
-    "      a: src\n"                   // 9
-    "      b: c\n"                     // 10 <- from c, no delay
-    "  - name: c\n"                    // 11
-    "    kernel: absdiff\n"            // 12
-    "    inputs:\n"                    // 13
-    "      a: a\n"                     // 14 <- from a, no delay
-    "      b: src\n"                   // 15
-    "  - name: blobs\n"                // 16
-    "    kernel: blobs\n"              // 17
-    "    params: {threshold: 0}\n"     // 18
-    "    inputs: {in: c}\n"            // 19
-    "outputs: [blobs]\n";              // 20
+    "name: cycle\n"                 // 1
+    "nodes:\n"                      // 2
+    "  - name: src\n"               // 3
+    "    kernel: source\n"          // 4
+    "    params: {format: gray}\n"  // 5
+    "  - name: a\n"                 // 6
+    "    kernel: absdiff\n"         // 7
+    "    inputs:\n"                 // 8
+    "      a: src\n"                // 9
+    "      b: c\n"                  // 10 <- from c, no delay
+    "  - name: c\n"                 // 11
+    "    kernel: absdiff\n"         // 12
+    "    inputs:\n"                 // 13
+    "      a: a\n"                  // 14 <- from a, no delay
+    "      b: src\n"                // 15
+    "  - name: blobs\n"             // 16
+    "    kernel: blobs\n"           // 17
+    "    params: {threshold: 0}\n"  // 18
+    "    inputs: {in: c}\n"         // 19
+    "outputs: [blobs]\n";           // 20
 
 const char* const kSelfLoop =
-    "name: self_loop\n"                // 1
-    "nodes:\n"                         // 2
-    "  - name: src\n"                  // 3
-    "    kernel: source\n"             // 4
-    "    params: {format: gray}\n"     // 5
-    "  - name: a\n"                    // 6
-    "    kernel: absdiff\n"            // 7
-    "    inputs:\n"                    // 8
-    "      a: src\n"                   // 9
-    "      b: a\n"                     // 10 <- itself, no delay
-    "  - name: blobs\n"                // 11
-    "    kernel: blobs\n"              // 12
-    "    params: {threshold: 0}\n"     // 13
-    "    inputs: {in: a}\n"            // 14
-    "outputs: [blobs]\n";              // 15
+    "name: self_loop\n"             // 1
+    "nodes:\n"                      // 2
+    "  - name: src\n"               // 3
+    "    kernel: source\n"          // 4
+    "    params: {format: gray}\n"  // 5
+    "  - name: a\n"                 // 6
+    "    kernel: absdiff\n"         // 7
+    "    inputs:\n"                 // 8
+    "      a: src\n"                // 9
+    "      b: a\n"                  // 10 <- itself, no delay
+    "  - name: blobs\n"             // 11
+    "    kernel: blobs\n"           // 12
+    "    params: {threshold: 0}\n"  // 13
+    "    inputs: {in: a}\n"         // 14
+    "outputs: [blobs]\n";           // 15
 
 const char* const kNoBlobs =
     "name: no_blobs\n"
@@ -1077,8 +1076,8 @@ TEST_F(Cli, ListKernelsNamesTheKernelsTheExamplesUse) {
 }
 
 TEST_F(Cli, BenchJsonRecords) {
-  const RunResult r = run_neopipe(
-      {"bench", "--size", "64x64", "--threads", "1", "--case", "dots", "--min-time", "0.01", "--repeats", "1", "--json"});
+  const RunResult r = run_neopipe({"bench", "--size", "64x64", "--threads", "1", "--case", "dots", "--min-time", "0.01",
+                                   "--repeats", "1", "--json"});
   ASSERT_TRUE(succeeded(r));
   json j;
   ASSERT_NO_THROW(j = json::parse(r.out)) << r.out;

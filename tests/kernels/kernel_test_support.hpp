@@ -4,10 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/core.hpp>
-
 #include <algorithm>
 #include <functional>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
 
@@ -20,11 +19,16 @@ inline constexpr int kSentinel = 77;
 
 inline double value_at(const cv::Mat& one_channel, int y, int x) {
   switch (one_channel.depth()) {
-    case CV_8U: return one_channel.at<std::uint8_t>(y, x);
-    case CV_16S: return one_channel.at<std::int16_t>(y, x);
-    case CV_32S: return one_channel.at<std::int32_t>(y, x);
-    case CV_32F: return one_channel.at<float>(y, x);
-    default: return one_channel.at<double>(y, x);
+    case CV_8U:
+      return one_channel.at<std::uint8_t>(y, x);
+    case CV_16S:
+      return one_channel.at<std::int16_t>(y, x);
+    case CV_32S:
+      return one_channel.at<std::int32_t>(y, x);
+    case CV_32F:
+      return one_channel.at<float>(y, x);
+    default:
+      return one_channel.at<double>(y, x);
   }
 }
 
@@ -149,8 +153,8 @@ inline void expect_stripes_equal_whole_frame(const std::function<void(cv::Mat&, 
       run(dst, r);
       for (int y = 0; y < dst.rows; ++y) {
         if (y >= r.start && y < r.end) continue;
-        ASSERT_TRUE(same_image(dst.row(y), before.row(y))) << "stripe [" << r.start << ", " << r.end << ") wrote row "
-                                                           << y;
+        ASSERT_TRUE(same_image(dst.row(y), before.row(y)))
+            << "stripe [" << r.start << ", " << r.end << ") wrote row " << y;
       }
     }
     EXPECT_TRUE(same_image(dst, whole)) << "stripes cut every " << cuts[1] - cuts[0] << " rows";
@@ -159,8 +163,8 @@ inline void expect_stripes_equal_whole_frame(const std::function<void(cv::Mat&, 
 
 /// A row-range call must find dst allocated with the input's size and `dst_type`; a whole-frame
 /// call (re)allocates it instead.
-inline void expect_row_range_needs_allocated_output(const std::function<void(cv::Mat&, cv::Range)>& run,
-                                                    cv::Size size, int dst_type) {
+inline void expect_row_range_needs_allocated_output(const std::function<void(cv::Mat&, cv::Range)>& run, cv::Size size,
+                                                    int dst_type) {
   cv::Mat unallocated;
   EXPECT_THROW(run(unallocated, cv::Range(0, 1)), KernelError);
   cv::Mat taller(size.height + 1, size.width, dst_type);

@@ -9,20 +9,19 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "kernel_test_support.hpp"
 #include "kernels/blobs.hpp"
 #include "kernels/reference/reference.hpp"
-#include "kernel_test_support.hpp"
 
 namespace k = neopipe::kernels;
 namespace ref = neopipe::kernels::reference;
@@ -45,11 +44,17 @@ cv::Mat random_gray(cv::RNG& rng, cv::Size size) {
   return m;
 }
 
-std::string size_name(const cv::Mat& m) { return std::to_string(m.cols) + "x" + std::to_string(m.rows); }
+std::string size_name(const cv::Mat& m) {
+  return std::to_string(m.cols) + "x" + std::to_string(m.rows);
+}
 
-std::string conn_name(k::Connectivity c) { return c == k::Connectivity::four ? "4-connected" : "8-connected"; }
+std::string conn_name(k::Connectivity c) {
+  return c == k::Connectivity::four ? "4-connected" : "8-connected";
+}
 
-k::BlobParams params(int threshold, k::Connectivity c) { return {threshold, c}; }
+k::BlobParams params(int threshold, k::Connectivity c) {
+  return {threshold, c};
+}
 
 // ---------------------------------------------------------------------------------------------
 // Comparisons
@@ -57,9 +62,9 @@ k::BlobParams params(int threshold, k::Connectivity c) { return {threshold, c}; 
 std::string describe(const k::Blob& b) {
   std::ostringstream s;
   s.precision(17);
-  s << "{area " << b.area << ", box (" << b.x0 << ", " << b.y0 << ") " << b.width << "x" << b.height << ", c ("
-    << b.cx << ", " << b.cy << "), wc (" << b.wcx << ", " << b.wcy << "), mu20 " << b.mu20 << ", mu11 " << b.mu11
-    << ", mu02 " << b.mu02 << "}";
+  s << "{area " << b.area << ", box (" << b.x0 << ", " << b.y0 << ") " << b.width << "x" << b.height << ", c (" << b.cx
+    << ", " << b.cy << "), wc (" << b.wcx << ", " << b.wcy << "), mu20 " << b.mu20 << ", mu11 " << b.mu11 << ", mu02 "
+    << b.mu02 << "}";
   return s.str();
 }
 
@@ -286,20 +291,20 @@ cv::Mat frame_touching(cv::Size size) {
   m.row(size.height - 1).setTo(255);
   m.col(0).setTo(255);
   m.col(size.width - 1).setTo(255);
-  m(cv::Rect(2, 2, 3, 2)).setTo(255);                                   // near the top-left corner
-  m(cv::Rect(size.width - 4, size.height - 4, 2, 2)).setTo(255);        // near the bottom-right corner
-  m(cv::Rect(size.width / 2, 1, 2, 3)).setTo(255);                      // touches the top edge
-  m.at<std::uint8_t>(size.height - 3, 2) = 255;                         // diagonal to nothing
+  m(cv::Rect(2, 2, 3, 2)).setTo(255);                             // near the top-left corner
+  m(cv::Rect(size.width - 4, size.height - 4, 2, 2)).setTo(255);  // near the bottom-right corner
+  m(cv::Rect(size.width / 2, 1, 2, 3)).setTo(255);                // touches the top edge
+  m.at<std::uint8_t>(size.height - 3, 2) = 255;                   // diagonal to nothing
   return m;
 }
 
 /// Components that touch only the image edges (no ring).
 cv::Mat edge_blobs(cv::Size size) {
   cv::Mat m(size, CV_8UC1, cv::Scalar(0));
-  m(cv::Rect(0, 0, 3, 2)).setTo(255);                                  // top-left corner
-  m(cv::Rect(size.width - 2, 0, 2, size.height)).setTo(255);           // whole right edge
-  m(cv::Rect(0, size.height - 1, size.width / 2, 1)).setTo(255);       // part of the bottom row
-  m(cv::Rect(0, 4, 1, 3)).setTo(255);                                  // on the left edge
+  m(cv::Rect(0, 0, 3, 2)).setTo(255);                             // top-left corner
+  m(cv::Rect(size.width - 2, 0, 2, size.height)).setTo(255);      // whole right edge
+  m(cv::Rect(0, size.height - 1, size.width / 2, 1)).setTo(255);  // part of the bottom row
+  m(cv::Rect(0, 4, 1, 3)).setTo(255);                             // on the left edge
   return m;
 }
 
@@ -318,8 +323,8 @@ TEST(Blobs, RandomBinaryImagesMatchConnectedComponentsWithStats) {
     cv::Size size;
     int runs;
   };
-  const SizeRuns sizes[] = {{{1, 1}, 12}, {{37, 1}, 6}, {{1, 37}, 6}, {{2, 2}, 6}, {{3, 3}, 6},
-                            {{64, 48}, 3}, {{257, 131}, 1}};
+  const SizeRuns sizes[] = {{{1, 1}, 12}, {{37, 1}, 6},  {{1, 37}, 6},   {{2, 2}, 6},
+                            {{3, 3}, 6},  {{64, 48}, 3}, {{257, 131}, 1}};
   for (const auto& [size, runs] : sizes) {
     for (double density : {0.05, 0.2, 0.4, 0.5, 0.6, 0.8}) {
       for (int r = 0; r < runs; ++r) {
@@ -587,7 +592,8 @@ TEST(BlobShapes, CombTeethJoinAtTheBottom) {
     for (k::Connectivity c : kBothConnectivities) expect_blobs_match_both(m, params(0, c));
     // Several combs side by side and an upside-down one.
     cv::Mat wide;
-    cv::hconcat(std::vector<cv::Mat>{m, cv::Mat::zeros(m.rows, 1, CV_8UC1), m, cv::Mat::zeros(m.rows, 1, CV_8UC1), m}, wide);
+    cv::hconcat(std::vector<cv::Mat>{m, cv::Mat::zeros(m.rows, 1, CV_8UC1), m, cv::Mat::zeros(m.rows, 1, CV_8UC1), m},
+                wide);
     EXPECT_EQ(count_blobs(wide, k::Connectivity::four), 3);
     cv::Mat flipped;
     cv::flip(wide, flipped, 0);
@@ -629,7 +635,7 @@ TEST(BlobShapes, ComponentsTouchingTheImageBorders) {
 
 TEST(BlobEdgeCases, TinyConstantAndBorderOnlyImages) {
   cv::RNG rng(kSeed);
-  std::vector<cv::Mat> images{cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)),   cv::Mat(1, 1, CV_8UC1, cv::Scalar(255)),
+  std::vector<cv::Mat> images{cv::Mat(1, 1, CV_8UC1, cv::Scalar(0)),  cv::Mat(1, 1, CV_8UC1, cv::Scalar(255)),
                               random_binary(rng, {29, 1}, 0.5),       random_binary(rng, {1, 29}, 0.5),
                               random_binary(rng, {2, 2}, 0.5),        random_binary(rng, {3, 3}, 0.5),
                               cv::Mat(9, 13, CV_8UC1, cv::Scalar(0)), cv::Mat(9, 13, CV_8UC1, cv::Scalar(255))};

@@ -8,21 +8,20 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <array>
 #include <bitset>
 #include <cstdint>
 #include <functional>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
 
+#include "kernel_test_support.hpp"
 #include "kernels/bool3x3.hpp"
 #include "kernels/conv3x3.hpp"
 #include "kernels/reference/reference.hpp"
-#include "kernel_test_support.hpp"
 
 namespace k = neopipe::kernels;
 namespace ref = neopipe::kernels::reference;
@@ -44,10 +43,16 @@ cv::Mat random_sparse_gray(cv::RNG& rng, cv::Size size) {
 // ---------------------------------------------------------------------------------------------
 // conv3x3 helpers
 
-k::Conv3x3 conv(const Weights& w, int shift = 0, k::Border border = {}) { return {w, shift, border}; }
+k::Conv3x3 conv(const Weights& w, int shift = 0, k::Border border = {}) {
+  return {w, shift, border};
+}
 
-k::Border replicate() { return {k::BorderMode::replicate, 0}; }
-k::Border constant(int v) { return {k::BorderMode::constant, v}; }
+k::Border replicate() {
+  return {k::BorderMode::replicate, 0};
+}
+k::Border constant(int v) {
+  return {k::BorderMode::constant, v};
+}
 
 std::string describe(const k::Conv3x3& c) {
   std::string s = "weights [";
@@ -128,7 +133,9 @@ cv::Mat run_bool(const cv::Mat& src, const k::BoolTable& table, k::Border border
   return dst;
 }
 
-cv::Mat square3x3() { return cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)); }
+cv::Mat square3x3() {
+  return cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3));
+}
 
 /// OpenCV's morphology on the set pixels (non-zero) of src, as a 0/255 image.
 cv::Mat opencv_erode(const cv::Mat& src) {
@@ -247,7 +254,8 @@ TEST(Conv3x3, WeightsAreInReadingOrderAsCorrelation) {
       for (int x = 0; x < src.cols; ++x) {
         const int sx = std::clamp(x + dx, 0, src.cols - 1);
         const int sy = std::clamp(y + dy, 0, src.rows - 1);
-        ASSERT_EQ(out.at<std::uint8_t>(y, x), src.at<std::uint8_t>(sy, sx)) << "weight " << i << " at (" << x << ", " << y << ")";
+        ASSERT_EQ(out.at<std::uint8_t>(y, x), src.at<std::uint8_t>(sy, sx))
+            << "weight " << i << " at (" << x << ", " << y << ")";
       }
     }
     EXPECT_TRUE(same_image(out, opencv_conv_u8(src, w, replicate())));
@@ -262,7 +270,8 @@ TEST(Conv3x3, ShiftedMatchesReferenceForEveryShiftAndBorder) {
   const cv::Mat src = random_image(rng, {47, 33});
   for (int shift = 0; shift <= 16; ++shift) {
     for (const auto& border : all_borders()) {
-      for (int max_abs : {3, 300, 65535}) expect_conv_matches_reference(src, conv(random_weights(rng, max_abs), shift, border));
+      for (int max_abs : {3, 300, 65535})
+        expect_conv_matches_reference(src, conv(random_weights(rng, max_abs), shift, border));
     }
   }
 }
@@ -291,7 +300,7 @@ TEST(Conv3x3, RoundsHalvesTowardPlusInfinity) {
   EXPECT_EQ(one(-65535, 16), -1);  // -0.99998 -> -1
   EXPECT_EQ(one(32768, 16), 1);    // exactly 1/2 -> 1
   EXPECT_EQ(one(32767, 16), 0);
-  EXPECT_EQ(one(-32768, 16), 0);   // exactly -1/2 -> 0
+  EXPECT_EQ(one(-32768, 16), 0);  // exactly -1/2 -> 0
 }
 
 TEST(Conv3x3, SaturatesToTheOutputType) {
@@ -374,7 +383,8 @@ TEST(Bool3x3, ErodeAndDilateTablesMatchCvErodeAndDilate) {
   for (double density : {0.1, 0.3, 0.5, 0.7, 0.9, 0.97}) {
     for (int i = 0; i < 4; ++i) {
       const cv::Mat src = random_binary(rng, {rng.uniform(1, 100), rng.uniform(1, 80)}, density);
-      SCOPED_TRACE("density " + std::to_string(density) + ", " + std::to_string(src.cols) + "x" + std::to_string(src.rows));
+      SCOPED_TRACE("density " + std::to_string(density) + ", " + std::to_string(src.cols) + "x" +
+                   std::to_string(src.rows));
       EXPECT_TRUE(same_image(run_bool(src, k::erode_table()), opencv_erode(src))) << "erode";
       EXPECT_TRUE(same_image(run_bool(src, k::dilate_table()), opencv_dilate(src))) << "dilate";
     }
@@ -569,8 +579,7 @@ TEST(NeighbourhoodStripes, RowRangeNeedsAnOutputOfTheRightSizeAndType) {
   {
     SCOPED_TRACE("bool3x3");
     const k::Bool3x3 b{k::erode_table(), 255, {}};
-    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::bool3x3(src, d, b, r); }, size,
-                                            CV_8UC1);
+    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::bool3x3(src, d, b, r); }, size, CV_8UC1);
   }
 }
 
@@ -579,8 +588,11 @@ TEST(NeighbourhoodStripes, RowRangeNeedsAnOutputOfTheRightSizeAndType) {
 
 TEST(NeighbourhoodEdgeCases, ConvOnEdgeCaseImages) {
   cv::RNG rng(kSeed);
-  const std::vector<Weights> weights{k::sobel_x3x3().weights, k::sobel_y3x3().weights, k::smooth3x3().weights,
-                                     random_weights(rng, 12), {1, 1, 1, 1, 1, 1, 1, 1, 1}};
+  const std::vector<Weights> weights{k::sobel_x3x3().weights,
+                                     k::sobel_y3x3().weights,
+                                     k::smooth3x3().weights,
+                                     random_weights(rng, 12),
+                                     {1, 1, 1, 1, 1, 1, 1, 1, 1}};
   for (const auto& [name, src] : edge_cases([&](cv::Size s) { return random_image(rng, s); })) {
     SCOPED_TRACE(name);
     for (const auto& w : weights) {
@@ -616,7 +628,8 @@ TEST(NeighbourhoodEdgeCases, BoolOnEdgeCaseImages) {
 TEST(NeighbourhoodEdgeCases, RoiViewsDoNotReadOutsideTheView) {
   // The parent differs from the view's edge pixels, so reading past the view would show.
   cv::RNG rng(kSeed);
-  for (const cv::Rect rect : {cv::Rect(3, 4, 20, 13), cv::Rect(5, 6, 1, 9), cv::Rect(2, 7, 15, 1), cv::Rect(8, 8, 2, 2)}) {
+  for (const cv::Rect rect :
+       {cv::Rect(3, 4, 20, 13), cv::Rect(5, 6, 1, 9), cv::Rect(2, 7, 15, 1), cv::Rect(8, 8, 2, 2)}) {
     const cv::Mat parent = random_image(rng, {30, 25});
     const cv::Mat view = parent(rect);
     const cv::Mat copy = view.clone();
@@ -641,7 +654,8 @@ TEST(NeighbourhoodEdgeCases, RowRangesOnTinyImages) {
   for (const cv::Size size : {cv::Size(1, 1), cv::Size(5, 1), cv::Size(1, 5), cv::Size(2, 2), cv::Size(3, 3)}) {
     const cv::Mat src = random_image(rng, size);
     SCOPED_TRACE(std::to_string(size.width) + "x" + std::to_string(size.height));
-    expect_stripes_equal_whole_frame([&](cv::Mat& d, cv::Range r) { k::conv3x3(src, d, k::sobel_x3x3(), CV_16SC1, r); });
+    expect_stripes_equal_whole_frame(
+        [&](cv::Mat& d, cv::Range r) { k::conv3x3(src, d, k::sobel_x3x3(), CV_16SC1, r); });
     const k::Bool3x3 b{k::dilate_table(), 255, constant(0)};
     expect_stripes_equal_whole_frame([&](cv::Mat& d, cv::Range r) { k::bool3x3(src, d, b, r); });
   }

@@ -6,15 +6,15 @@
 
 #include <gtest/gtest.h>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
-
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
 
+#include "kernel_test_support.hpp"
 #include "kernels/alu.hpp"
 #include "kernels/convert.hpp"
 #include "kernels/gray.hpp"
@@ -23,7 +23,6 @@
 #include "kernels/lut2.hpp"
 #include "kernels/reference/reference.hpp"
 #include "kernels/threshold.hpp"
-#include "kernel_test_support.hpp"
 
 namespace k = neopipe::kernels;
 namespace ref = neopipe::kernels::reference;
@@ -69,14 +68,30 @@ constexpr k::AluOp kAllOps[] = {k::AluOp::add, k::AluOp::sub,     k::AluOp::absd
 cv::Mat opencv_alu(k::AluOp op, const cv::Mat& a, const cv::Mat& b) {
   cv::Mat dst;
   switch (op) {
-    case k::AluOp::add: cv::add(a, b, dst); break;
-    case k::AluOp::sub: cv::subtract(a, b, dst); break;
-    case k::AluOp::absdiff: cv::absdiff(a, b, dst); break;
-    case k::AluOp::min: cv::min(a, b, dst); break;
-    case k::AluOp::max: cv::max(a, b, dst); break;
-    case k::AluOp::bit_and: cv::bitwise_and(a, b, dst); break;
-    case k::AluOp::bit_or: cv::bitwise_or(a, b, dst); break;
-    case k::AluOp::bit_xor: cv::bitwise_xor(a, b, dst); break;
+    case k::AluOp::add:
+      cv::add(a, b, dst);
+      break;
+    case k::AluOp::sub:
+      cv::subtract(a, b, dst);
+      break;
+    case k::AluOp::absdiff:
+      cv::absdiff(a, b, dst);
+      break;
+    case k::AluOp::min:
+      cv::min(a, b, dst);
+      break;
+    case k::AluOp::max:
+      cv::max(a, b, dst);
+      break;
+    case k::AluOp::bit_and:
+      cv::bitwise_and(a, b, dst);
+      break;
+    case k::AluOp::bit_or:
+      cv::bitwise_or(a, b, dst);
+      break;
+    case k::AluOp::bit_xor:
+      cv::bitwise_xor(a, b, dst);
+      break;
   }
   return dst;
 }
@@ -107,11 +122,14 @@ struct NamedLut2 {
 std::vector<NamedLut2> lut2_tables(cv::RNG& rng) {
   std::vector<NamedLut2> tables;
   tables.push_back({"identity on a", k::Lut2()});
-  tables.push_back({"running average (3a + b) / 4",
-                    k::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>((3 * a + b + 2) / 4); })});
+  tables.push_back({"running average (3a + b) / 4", k::Lut2::from_function([](int a, int b) {
+                      return static_cast<std::uint8_t>((3 * a + b + 2) / 4);
+                    })});
   tables.push_back({"b", k::Lut2::from_function([](int, int b) { return static_cast<std::uint8_t>(b); })});
-  tables.push_back({"a > b", k::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a > b ? 255 : 0); })});
-  tables.push_back({"(a * b) / 255", k::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a * b / 255); })});
+  tables.push_back(
+      {"a > b", k::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a > b ? 255 : 0); })});
+  tables.push_back(
+      {"(a * b) / 255", k::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a * b / 255); })});
   k::Lut2 random;
   for (int a = 0; a < 256; ++a) {
     for (int b = 0; b < 256; ++b) random.at(a, b) = static_cast<std::uint8_t>(rng.uniform(0, 256));
@@ -207,7 +225,8 @@ cv::Mat otsu_image(cv::RNG& rng, int i) {
       b.copyTo(out, pick < rng.uniform(0.05, 0.95));
       return out;
     }
-    case 3: return gaussian_u8(rng, size, rng.uniform(0.0, 256.0), rng.uniform(0.5, 60.0));
+    case 3:
+      return gaussian_u8(rng, size, rng.uniform(0.0, 256.0), rng.uniform(0.5, 60.0));
     case 4: {
       cv::Mat idx(size, CV_8UC1);
       rng.fill(idx, cv::RNG::UNIFORM, 0, rng.uniform(2, 5));
@@ -217,7 +236,8 @@ cv::Mat otsu_image(cv::RNG& rng, int i) {
       cv::LUT(idx, levels, out);
       return out;
     }
-    default: return cv::Mat(size, CV_8UC1, cv::Scalar(rng.uniform(0, 256)));
+    default:
+      return cv::Mat(size, CV_8UC1, cv::Scalar(rng.uniform(0, 256)));
   }
 }
 
@@ -518,12 +538,12 @@ TEST(ConvertS16, ExtremesAndHalves) {
     int expected;
   };
   const Probe probes[] = {
-      {-32768, true, 0, 255},  {32767, true, 0, 255},     {-32768, false, 0, 0},   {32767, false, 0, 255},
-      {-32768, true, 7, 255},  {-32768, true, 8, 128},    {32767, true, 8, 128},   {-32768, true, 15, 1},
-      {32767, false, 15, 1},   {16384, false, 15, 1},     {16383, false, 15, 0},   {-32768, false, 15, 0},
-      {3, false, 1, 2},        {-3, true, 1, 2},          {-3, false, 1, 0},       {1, false, 1, 1},
-      {-1, false, 1, 0},       {255, false, 0, 255},      {256, false, 0, 255},    {-1, true, 0, 1},
-      {383, false, 1, 192},    {-200, true, 2, 50},       {0, true, 15, 0},        {510, false, 1, 255},
+      {-32768, true, 0, 255}, {32767, true, 0, 255},  {-32768, false, 0, 0}, {32767, false, 0, 255},
+      {-32768, true, 7, 255}, {-32768, true, 8, 128}, {32767, true, 8, 128}, {-32768, true, 15, 1},
+      {32767, false, 15, 1},  {16384, false, 15, 1},  {16383, false, 15, 0}, {-32768, false, 15, 0},
+      {3, false, 1, 2},       {-3, true, 1, 2},       {-3, false, 1, 0},     {1, false, 1, 1},
+      {-1, false, 1, 0},      {255, false, 0, 255},   {256, false, 0, 255},  {-1, true, 0, 1},
+      {383, false, 1, 192},   {-200, true, 2, 50},    {0, true, 15, 0},      {510, false, 1, 255},
   };
   for (const auto& p : probes) {
     const cv::Mat src(1, 1, CV_16SC1, cv::Scalar(p.v));
@@ -661,8 +681,8 @@ TEST(PointStripes, RowRangeNeedsAnOutputOfTheRightSizeAndType) {
   }
   {
     SCOPED_TRACE("alu");
-    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::alu(k::AluOp::add, a, a, d, r); },
-                                            size, CV_8UC1);
+    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::alu(k::AluOp::add, a, a, d, r); }, size,
+                                            CV_8UC1);
   }
   {
     SCOPED_TRACE("lut2");
@@ -671,8 +691,7 @@ TEST(PointStripes, RowRangeNeedsAnOutputOfTheRightSizeAndType) {
   }
   {
     SCOPED_TRACE("bgr_to_gray");
-    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::bgr_to_gray(bgr, d, r); }, size,
-                                            CV_8UC1);
+    expect_row_range_needs_allocated_output([&](cv::Mat& d, cv::Range r) { k::bgr_to_gray(bgr, d, r); }, size, CV_8UC1);
   }
   {
     SCOPED_TRACE("convert_s16");

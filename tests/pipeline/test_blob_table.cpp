@@ -10,10 +10,7 @@
 // frames_read == frames_processed + frames_dropped.
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
@@ -24,11 +21,13 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
@@ -142,7 +141,8 @@ void expect_csv_row(const std::string& line, std::int64_t frame, size_t index, c
   }
 }
 
-std::string write_table(const io::TableOptions& options, const std::vector<std::pair<std::int64_t, pl::BlobList>>& frames,
+std::string write_table(const io::TableOptions& options,
+                        const std::vector<std::pair<std::int64_t, pl::BlobList>>& frames,
                         std::int64_t* rows = nullptr) {
   std::ostringstream out;
   io::BlobTableWriter w(out, options);
@@ -225,7 +225,8 @@ class HoldFirstFrameNode final : public pl::Node {
  public:
   HoldFirstFrameNode(std::shared_ptr<ReadProgress> progress, int hold_until)
       : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, neopipe::kernels::Footprint::frame),
-        progress_(std::move(progress)), hold_until_(hold_until) {}
+        progress_(std::move(progress)),
+        hold_until_(hold_until) {}
   void begin_frame(pl::NodeIO& io) override {
     if (first_) {
       first_ = false;
@@ -372,7 +373,7 @@ TEST(RunStats, LatencyQuantileIsNearestRank) {
   EXPECT_EQ(s.latency_quantile(0.8), 0.004);
   EXPECT_EQ(s.latency_quantile(0.99), 0.005);
   EXPECT_EQ(s.latency_quantile(1.0), 0.005);
-  EXPECT_EQ(s.latency_quantile(2.0), 0.005);   // clamped
+  EXPECT_EQ(s.latency_quantile(2.0), 0.005);  // clamped
   EXPECT_EQ(s.latency_quantile(-1.0), 0.001);
   // The latencies themselves are left in their order.
   EXPECT_EQ(s.latencies_s, (std::vector<double>{0.005, 0.001, 0.004, 0.002, 0.003}));
@@ -387,7 +388,8 @@ TEST(RunStats, Summary) {
   s.seconds = 0.41;
   s.latencies_s = {0.002, 0.001, 0.010};
   EXPECT_DOUBLE_EQ(s.frames_per_second(), 120 / 0.41);
-  EXPECT_EQ(s.summary(), "120 frames, 3 dropped, 1440 blobs in 0.410 s (292.7 frames/s); latency p50 2.00 ms, p99 10.00 ms");
+  EXPECT_EQ(s.summary(),
+            "120 frames, 3 dropped, 1440 blobs in 0.410 s (292.7 frames/s); latency p50 2.00 ms, p99 10.00 ms");
   s.interrupted = true;
   EXPECT_EQ(s.summary(),
             "120 frames, 3 dropped, 1440 blobs in 0.410 s (292.7 frames/s); latency p50 2.00 ms, p99 10.00 ms "
@@ -399,7 +401,8 @@ TEST(RunStats, Summary) {
             "reader lag max 12.3 ms (interrupted)");
   const pl::RunStats empty;
   EXPECT_EQ(empty.frames_per_second(), 0);
-  EXPECT_EQ(empty.summary(), "0 frames, 0 dropped, 0 blobs in 0.000 s (0.0 frames/s); latency p50 0.00 ms, p99 0.00 ms");
+  EXPECT_EQ(empty.summary(),
+            "0 frames, 0 dropped, 0 blobs in 0.000 s (0.0 frames/s); latency p50 0.00 ms, p99 0.00 ms");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -419,12 +422,13 @@ TEST(RunStream, BatchModeProcessesEveryFrameInOrder) {
   pl::StreamOptions options;
   options.executor = {.threads = 4, .frames_in_flight = 3};
   options.progress = [&](const pl::RunStats& s) { progress.push_back(s.frames_processed); };
-  pl::run_stream(*source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
-                 [&](const pl::FrameResult& r) {
-                   indices.push_back(r.index);
-                   tables.push_back(std::get<pl::BlobList>(r.outputs.at(0)));
-                 },
-                 stats);
+  pl::run_stream(
+      *source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
+      [&](const pl::FrameResult& r) {
+        indices.push_back(r.index);
+        tables.push_back(std::get<pl::BlobList>(r.outputs.at(0)));
+      },
+      stats);
 
   EXPECT_EQ(stats.frames_read, 14);
   EXPECT_EQ(stats.frames_processed, 14);
@@ -463,8 +467,9 @@ TEST(RunStream, StopRequestEndsReadingButFinishesFramesInFlight) {
   };
   pl::RunStats stats;
   std::int64_t delivered = 0;
-  pl::run_stream(*source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
-                 [&](const pl::FrameResult&) { ++delivered; }, stats);
+  pl::run_stream(
+      *source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
+      [&](const pl::FrameResult&) { ++delivered; }, stats);
   EXPECT_TRUE(stats.interrupted);
   EXPECT_GE(stats.frames_read, 3);
   EXPECT_LT(stats.frames_read, 12);  // at most a pipeline's worth read after the request
@@ -477,8 +482,8 @@ TEST(RunStream, StopRequestEndsReadingButFinishesFramesInFlight) {
   pl::StreamOptions at_once;
   at_once.stop = &stopped;
   pl::RunStats none;
-  pl::run_stream(*again, pl::compile(pl::blob_graph(), pl::standard_kernels()), at_once, [](const pl::FrameResult&) {},
-                 none);
+  pl::run_stream(
+      *again, pl::compile(pl::blob_graph(), pl::standard_kernels()), at_once, [](const pl::FrameResult&) {}, none);
   EXPECT_TRUE(none.interrupted);
   EXPECT_EQ(none.frames_read, 0);
   EXPECT_EQ(none.frames_processed, 0);
@@ -494,8 +499,9 @@ TEST(RunStream, ReadingErrorComesAfterTheEarlierFrames) {
   pl::RunStats stats;
   std::vector<std::int64_t> delivered;
   try {
-    pl::run_stream(*source, pl::compile(pl::blob_graph(), pl::standard_kernels()), {},
-                   [&](const pl::FrameResult& r) { delivered.push_back(r.index); }, stats);
+    pl::run_stream(
+        *source, pl::compile(pl::blob_graph(), pl::standard_kernels()), {},
+        [&](const pl::FrameResult& r) { delivered.push_back(r.index); }, stats);
     ADD_FAILURE() << "the corrupt image went unnoticed";
   } catch (const io::SourceError& e) {
     EXPECT_NE(std::string(e.what()).find(dir.file("c.png")), std::string::npos) << e.what();
@@ -512,12 +518,13 @@ TEST(RunStream, SinkErrorIsRethrownAfterTheEarlierFrames) {
   pl::RunStats stats;
   std::vector<std::int64_t> delivered;
   try {
-    pl::run_stream(*source, pl::compile(pl::blob_graph(), pl::standard_kernels()), {},
-                   [&](const pl::FrameResult& r) {
-                     if (r.index == 4) throw std::runtime_error("disk full");
-                     delivered.push_back(r.index);
-                   },
-                   stats);
+    pl::run_stream(
+        *source, pl::compile(pl::blob_graph(), pl::standard_kernels()), {},
+        [&](const pl::FrameResult& r) {
+          if (r.index == 4) throw std::runtime_error("disk full");
+          delivered.push_back(r.index);
+        },
+        stats);
     ADD_FAILURE() << "the sink's error was lost";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), "disk full");
@@ -537,12 +544,13 @@ TEST(RunStream, FailedSinkReceivesNoLaterFrames) {
     std::vector<std::int64_t> delivered;
     pl::StreamOptions options;
     options.executor = {.threads = 2, .frames_in_flight = 6};
-    EXPECT_THROW(pl::run_stream(*source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
-                                [&](const pl::FrameResult& r) {
-                                  delivered.push_back(r.index);
-                                  if (r.index == 4) throw std::runtime_error("disk full");
-                                },
-                                stats),
+    EXPECT_THROW(pl::run_stream(
+                     *source, pl::compile(pl::blob_graph(), pl::standard_kernels()), options,
+                     [&](const pl::FrameResult& r) {
+                       delivered.push_back(r.index);
+                       if (r.index == 4) throw std::runtime_error("disk full");
+                     },
+                     stats),
                  std::runtime_error);
     EXPECT_EQ(delivered, (std::vector<std::int64_t>{0, 1, 2, 3, 4})) << "attempt " << attempt;
   }
@@ -572,13 +580,14 @@ TEST(RunStream, RealtimeModeCountsEveryFrameReadAsProcessedOrDropped) {
   options.executor = {.threads = 2, .frames_in_flight = 2};
   pl::RunStats stats;
   std::vector<std::int64_t> indices;
-  pl::run_stream(source, std::move(graph), options,
-                 [&](const pl::FrameResult& r) {
-                   indices.push_back(r.index);
-                   // Each result is its own frame, unchanged by the node.
-                   EXPECT_EQ(std::get<cv::Mat>(r.outputs.at(0)).at<std::uint8_t>(0, 0), r.index * 10);
-                 },
-                 stats);
+  pl::run_stream(
+      source, std::move(graph), options,
+      [&](const pl::FrameResult& r) {
+        indices.push_back(r.index);
+        // Each result is its own frame, unchanged by the node.
+        EXPECT_EQ(std::get<cv::Mat>(r.outputs.at(0)).at<std::uint8_t>(0, 0), r.index * 10);
+      },
+      stats);
 
   EXPECT_EQ(stats.frames_read, n);
   EXPECT_EQ(stats.frames_read, stats.frames_processed + stats.frames_dropped);

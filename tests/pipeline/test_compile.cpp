@@ -10,18 +10,17 @@
 // the blobs of the built-in pipeline::blob_graph().
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
@@ -89,12 +88,16 @@ std::string compile_error(const std::string& yaml, const pl::KernelRegistry& reg
 // used as the output: for checking one kernel's parameters. The params value starts at line 4,
 // column 14.
 std::string one_node_spec(const std::string& kernel, const std::string& params) {
-  return "nodes:\n"                                                    // 1
+  return "nodes:\n"                                                   // 1
          "  - {name: src, kernel: source, params: {format: gray}}\n"  // 2
-         "  - {name: k, kernel: " + kernel + ",\n"                     // 3
-         "     params: " + params + ",\n"                              // 4
-         "     inputs: {in: src}}\n"                                   // 5
-         "outputs: k\n";                                               // 6
+         "  - {name: k, kernel: " +
+         kernel +
+         ",\n"  // 3
+         "     params: " +
+         params +
+         ",\n"                        // 4
+         "     inputs: {in: src}}\n"  // 5
+         "outputs: k\n";              // 6
 }
 
 // Textured bgr frames with bright discs, so thresholds and blobs have work to do.
@@ -325,41 +328,41 @@ TEST(CompileErrors, UnknownPortOrInput) {
 TEST(CompileErrors, MultiOutputNodeNeedsAPort) {
   const pl::KernelRegistry registry = registry_with_split();
   EXPECT_EQ(compile_error(yaml_lines({
-                          /* 1 */ "nodes:",
-                          /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
-                          /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
-                          /* 4 */ "  - {name: both, kernel: or, inputs: {a: sp.hi, b: sp}}",
-                          /* 5 */ "outputs: both",
-                      }),
-                      registry),
+                              /* 1 */ "nodes:",
+                              /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
+                              /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
+                              /* 4 */ "  - {name: both, kernel: or, inputs: {a: sp.hi, b: sp}}",
+                              /* 5 */ "outputs: both",
+                          }),
+                          registry),
             "spec.yaml:4:52: node 'sp' has 2 outputs; name one: hi, lo");
   EXPECT_EQ(compile_error(yaml_lines({
-                          /* 1 */ "nodes:",
-                          /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
-                          /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
-                          /* 4 */ "outputs: [sp.lo, sp.mid]",
-                      }),
-                      registry),
+                              /* 1 */ "nodes:",
+                              /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
+                              /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
+                              /* 4 */ "outputs: [sp.lo, sp.mid]",
+                          }),
+                          registry),
             "spec.yaml:4:18: node 'sp' has no output 'mid' (outputs: hi, lo)");
   // Each port of a multi-output node must go somewhere.
   EXPECT_EQ(compile_error(yaml_lines({
-                          /* 1 */ "nodes:",
-                          /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
-                          /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
-                          /* 4 */ "outputs: sp.hi",
-                      }),
-                      registry),
+                              /* 1 */ "nodes:",
+                              /* 2 */ "  - {name: src, kernel: source, params: {format: gray}}",
+                              /* 3 */ "  - {name: sp, kernel: split, inputs: {in: src}}",
+                              /* 4 */ "outputs: sp.hi",
+                          }),
+                          registry),
             "spec.yaml:3:5: dangling port: output 'lo' of node 'sp' goes nowhere (connect it or list it under "
             "outputs)");
   // Named ports are wired to the right consumers: hi | lo gives the input back.
   pl::CompiledGraph g = compile_yaml(yaml_lines({
-                                               "nodes:",
-                                               "  - {name: src, kernel: source, params: {format: gray}}",
-                                               "  - {name: sp, kernel: split, inputs: {in: src}}",
-                                               "  - {name: both, kernel: or, inputs: {a: sp.hi, b: sp.lo}}",
-                                               "outputs: [both, sp.hi]",
-                                           }),
-                                           registry);
+                                         "nodes:",
+                                         "  - {name: src, kernel: source, params: {format: gray}}",
+                                         "  - {name: sp, kernel: split, inputs: {in: src}}",
+                                         "  - {name: both, kernel: or, inputs: {a: sp.hi, b: sp.lo}}",
+                                         "outputs: [both, sp.hi]",
+                                     }),
+                                     registry);
   EXPECT_EQ(g.output_names(), (std::vector<std::string>{"both", "sp.hi"}));
   cv::Mat frame(9, 13, CV_8UC1);
   cv::randu(frame, 0, 256);
@@ -621,12 +624,19 @@ TEST(Compile, NodeWithoutParamsTakesTheDefaults) {
   for (const char* no_params : {"", ", params: ", ", params: ~"}) {
     SCOPED_TRACE(std::string("params written as '") + no_params + "'");
     const std::string p(no_params);
-    const std::string yaml = "nodes:\n"
-                             "  - {name: src, kernel: source" + p + "}\n"
-                             "  - {name: gray, kernel: gray, inputs: {in: src}}\n"
-                             "  - {name: binary, kernel: threshold" + p + ", inputs: {in: gray}}\n"
-                             "  - {name: blobs, kernel: blobs" + p + ", inputs: {in: binary, weights: gray}}\n"
-                             "outputs: blobs\n";
+    const std::string yaml =
+        "nodes:\n"
+        "  - {name: src, kernel: source" +
+        p +
+        "}\n"
+        "  - {name: gray, kernel: gray, inputs: {in: src}}\n"
+        "  - {name: binary, kernel: threshold" +
+        p +
+        ", inputs: {in: gray}}\n"
+        "  - {name: blobs, kernel: blobs" +
+        p +
+        ", inputs: {in: binary, weights: gray}}\n"
+        "outputs: blobs\n";
     const auto results = pl::run_frames(compile_yaml(yaml), frames);
     ASSERT_EQ(results.size(), frames.size());
     for (size_t f = 0; f < frames.size(); ++f) {
@@ -635,8 +645,12 @@ TEST(Compile, NodeWithoutParamsTakesTheDefaults) {
   }
   // The same through GraphBuilder, whose params default to an empty YAML node.
   pl::GraphBuilder b("<defaults>");
-  b.node("src", "source").node("gray", "gray").node("bin", "threshold").connect("src", "gray.in")
-      .connect("gray", "bin.in").output("bin");
+  b.node("src", "source")
+      .node("gray", "gray")
+      .node("bin", "threshold")
+      .connect("src", "gray.in")
+      .connect("gray", "bin.in")
+      .output("bin");
   EXPECT_NO_THROW(pl::compile(b.spec(), pl::standard_kernels()));
 }
 
@@ -656,8 +670,10 @@ TEST(Compile, PortUsedOnlyAsInitialValueIsNotDangling) {
   cv::Mat f1(4, 4, CV_8UC1, cv::Scalar(30));
   const auto results = pl::run_frames(std::move(g), {f0, f1});
   ASSERT_EQ(results.size(), 2U);
-  EXPECT_EQ(cv::norm(std::get<cv::Mat>(results[0].outputs[0]), cv::Mat(4, 4, CV_8UC1, cv::Scalar(235)), cv::NORM_INF), 0);
-  EXPECT_EQ(cv::norm(std::get<cv::Mat>(results[1].outputs[0]), cv::Mat(4, 4, CV_8UC1, cv::Scalar(20)), cv::NORM_INF), 0);
+  EXPECT_EQ(cv::norm(std::get<cv::Mat>(results[0].outputs[0]), cv::Mat(4, 4, CV_8UC1, cv::Scalar(235)), cv::NORM_INF),
+            0);
+  EXPECT_EQ(cv::norm(std::get<cv::Mat>(results[1].outputs[0]), cv::Mat(4, 4, CV_8UC1, cv::Scalar(20)), cv::NORM_INF),
+            0);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -13,9 +13,7 @@
 // frames are processed, and destroying an executor with frames still in flight.
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <unistd.h>
 
 #include <algorithm>
 #include <condition_variable>
@@ -24,11 +22,12 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "kernels/bool3x3.hpp"
 #include "kernels/conv3x3.hpp"
@@ -169,7 +168,9 @@ std::vector<pl::Value> deep_copy(const std::vector<pl::Value>& values) {
   return out;
 }
 
-const cv::Mat& image_output(const pl::FrameResult& r, size_t k) { return std::get<cv::Mat>(r.outputs.at(k)); }
+const cv::Mat& image_output(const pl::FrameResult& r, size_t k) {
+  return std::get<cv::Mat>(r.outputs.at(k));
+}
 
 // ---------------------------------------------------------------------------------------------
 // Graphs
@@ -191,7 +192,9 @@ std::string running_average_yaml(const std::string& initial) {
          "    params: {expr: \"floor((a + 3*b) / 4)\"}\n"
          "    inputs:\n"
          "      a: src\n"
-         "      b: {from: avg, delay: 1, initial: " + initial + "}\n"
+         "      b: {from: avg, delay: 1, initial: " +
+         initial +
+         "}\n"
          "outputs: avg\n";
 }
 
@@ -205,9 +208,13 @@ std::string every_kernel_yaml(const std::string& mask_path) {
   return "nodes:\n"
          "  - {name: src, kernel: source, params: {format: bgr}}\n"
          "  - {name: gray, kernel: gray, inputs: {in: src}}\n"
-         "  - {name: mask, kernel: image, params: {path: '" + mask_path + "', format: gray}}\n"
+         "  - {name: mask, kernel: image, params: {path: '" +
+         mask_path +
+         "', format: gray}}\n"
          "  - {name: inv, kernel: lut, params: {expr: 255 - a}, inputs: {in: gray}}\n"
-         "  - {name: square, kernel: lut, params: {table: [" + lut_table + "]}, inputs: {in: gray}}\n"
+         "  - {name: square, kernel: lut, params: {table: [" +
+         lut_table +
+         "]}, inputs: {in: gray}}\n"
          "  - {name: otsu, kernel: threshold, params: {value: otsu}, inputs: {in: gray}}\n"
          "  - {name: fixed, kernel: threshold, params: {value: 100, high: 200}, inputs: {in: inv}}\n"
          "  - {name: add, kernel: add, inputs: {a: gray, b: square}}\n"
@@ -223,20 +230,27 @@ std::string every_kernel_yaml(const std::string& mask_path) {
          "    params: {expr: \"a > b ? a - b : (a + 7*b + 4) / 8\"}\n"
          "    inputs: {a: gray, b: {from: mix, delay: 1, initial: gray}}\n"
          "  - {name: smooth, kernel: conv3x3, params: {preset: smooth}, inputs: {in: gray}}\n"
-         "  - {name: sharp, kernel: conv3x3, params: {preset: sharpen, border: constant, border_value: 30}, inputs: {in: smooth}}\n"
+         "  - {name: sharp, kernel: conv3x3, params: {preset: sharpen, border: constant, border_value: 30}, inputs: "
+         "{in: smooth}}\n"
          "  - {name: gx, kernel: conv3x3, params: {preset: sobel_x, output: s16}, inputs: {in: gray}}\n"
-         "  - {name: lap, kernel: conv3x3, params: {weights: [1, 2, 1, 0, -8, 0, 1, 2, 1], shift: 1, output: s16}, inputs: {in: smooth}}\n"
+         "  - {name: lap, kernel: conv3x3, params: {weights: [1, 2, 1, 0, -8, 0, 1, 2, 1], shift: 1, output: s16}, "
+         "inputs: {in: smooth}}\n"
          "  - {name: gxm, kernel: convert, params: {abs: true, shift: 2}, inputs: {in: gx}}\n"
          "  - {name: lapc, kernel: convert, params: {abs: false}, inputs: {in: lap}}\n"
          "  - {name: eroded, kernel: bool3x3, params: {op: erode}, inputs: {in: otsu}}\n"
-         "  - {name: dilated, kernel: bool3x3, params: {op: dilate, border: constant, border_value: 1}, inputs: {in: otsu}}\n"
+         "  - {name: dilated, kernel: bool3x3, params: {op: dilate, border: constant, border_value: 1}, inputs: {in: "
+         "otsu}}\n"
          "  - {name: hitmiss, kernel: bool3x3, params: {pattern: 'x1x 111 x1x', high: 128}, inputs: {in: otsu}}\n"
          "  - {name: outline, kernel: bool3x3, params: {expr: 'c && !(n && s && e && w)'}, inputs: {in: otsu}}\n"
-         "  - {name: majority, kernel: bool3x3, params: {table: [" + bool_table + "]}, inputs: {in: fixed}}\n"
+         "  - {name: majority, kernel: bool3x3, params: {table: [" +
+         bool_table +
+         "]}, inputs: {in: fixed}}\n"
          "  - {name: hist, kernel: histogram, inputs: {in: gray}}\n"
-         "  - {name: blobs, kernel: blobs, params: {threshold: 0, connectivity: 4}, inputs: {in: eroded, weights: gray}}\n"
+         "  - {name: blobs, kernel: blobs, params: {threshold: 0, connectivity: 4}, inputs: {in: eroded, weights: "
+         "gray}}\n"
          "  - {name: blobs_otsu, kernel: blobs, params: {threshold: otsu}, inputs: {in: smooth, weights: mix}}\n"
-         "outputs: [gray, mask, inv, square, otsu, fixed, add, sub, absdiff, min, max, and, or, xor, mix, smooth, sharp,\n"
+         "outputs: [gray, mask, inv, square, otsu, fixed, add, sub, absdiff, min, max, and, or, xor, mix, smooth, "
+         "sharp,\n"
          "          gx, lap, gxm, lapc, eroded, dilated, hitmiss, outline, majority, hist, blobs, blobs_otsu]\n";
 }
 
@@ -275,7 +289,9 @@ class TestNode final : public pl::Node {
  public:
   TestNode(std::shared_ptr<Gate> gate, int block_at, int throw_at)
       : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame),
-        gate_(std::move(gate)), block_at_(block_at), throw_at_(throw_at) {}
+        gate_(std::move(gate)),
+        block_at_(block_at),
+        throw_at_(throw_at) {}
   void begin_frame(pl::NodeIO& io) override {
     const int frame = io.image(0).at<std::uint8_t>(0, 0);
     if (frame == block_at_) gate_->arrive_and_wait();
@@ -291,8 +307,7 @@ class TestNode final : public pl::Node {
 
 pl::KernelRegistry registry_with_test_node(std::shared_ptr<Gate> gate) {
   pl::KernelRegistry r = pl::standard_kernels();
-  r.add({"test", "copies its input; blocks at frame block_at, throws at frame throw_at",
-         [gate](pl::NodeContext& c) {
+  r.add({"test", "copies its input; blocks at frame block_at, throws at frame throw_at", [gate](pl::NodeContext& c) {
            const int block_at = c.params.get_int("block_at", -1, -1, 255);
            const int throw_at = c.params.get_int("throw_at", -1, -1, 255);
            return std::make_unique<TestNode>(gate, block_at, throw_at);
@@ -305,7 +320,8 @@ pl::CompiledGraph test_node_graph(std::shared_ptr<Gate> gate, const std::string&
   std::string yaml =
       "nodes:\n"
       "  - {name: src, kernel: source, params: {format: gray}}\n"
-      "  - {name: t, kernel: test, params: " + params + ", inputs: {in: src}}\n";
+      "  - {name: t, kernel: test, params: " +
+      params + ", inputs: {in: src}}\n";
   if (with_after) yaml += "  - {name: after, kernel: lut, params: {expr: 255 - a}, inputs: {in: t}}\n";
   yaml += with_after ? "outputs: [t, after]\n" : "outputs: t\n";
   return compile_yaml(yaml, registry_with_test_node(std::move(gate)));
@@ -319,12 +335,9 @@ std::vector<pl::FrameResult> expect_deterministic(const std::function<pl::Compil
   const auto reference = pl::run_frames(make_graph(), frames, reference_options);
   EXPECT_EQ(reference.size(), frames.size());
   const pl::ExecutorOptions variants[] = {
-      {.threads = 1, .frames_in_flight = 6},
-      {.threads = 2, .frames_in_flight = 2},
-      {.threads = 2, .frames_in_flight = 6},
-      {.threads = 8, .frames_in_flight = 2},
-      {.threads = 8, .frames_in_flight = 6},
-      {.threads = 8, .frames_in_flight = 6, .min_stripe_rows = 3},
+      {.threads = 1, .frames_in_flight = 6}, {.threads = 2, .frames_in_flight = 2},
+      {.threads = 2, .frames_in_flight = 6}, {.threads = 8, .frames_in_flight = 2},
+      {.threads = 8, .frames_in_flight = 6}, {.threads = 8, .frames_in_flight = 6, .min_stripe_rows = 3},
   };
   for (const auto& o : variants) {
     const std::string config = "threads " + std::to_string(o.threads) + ", frames in flight " +
@@ -389,8 +402,9 @@ TEST(ExecutorDelay, RunningAverageFromAConstant) {
       expected.push_back(out);
       prev = out;
     }
-    for (const pl::ExecutorOptions o : {pl::ExecutorOptions{.threads = 1, .frames_in_flight = 2},
-                                        pl::ExecutorOptions{.threads = 4, .frames_in_flight = 6, .min_stripe_rows = 2}}) {
+    for (const pl::ExecutorOptions o :
+         {pl::ExecutorOptions{.threads = 1, .frames_in_flight = 2},
+          pl::ExecutorOptions{.threads = 4, .frames_in_flight = 6, .min_stripe_rows = 2}}) {
       const auto results = pl::run_frames(compile_yaml(running_average_yaml(std::to_string(initial))), frames, o);
       ASSERT_EQ(results.size(), frames.size());
       for (size_t t = 0; t < frames.size(); ++t) {
@@ -507,7 +521,8 @@ TEST(ExecutorStripes, NodesEqualTheirKernelsOnTheWholeFrame) {
       "nodes:\n"
       "  - {name: src, kernel: source, params: {format: bgr}}\n"
       "  - {name: gray, kernel: gray, inputs: {in: src}}\n"
-      "  - {name: smooth, kernel: conv3x3, params: {preset: smooth, border: constant, border_value: 9}, inputs: {in: gray}}\n"
+      "  - {name: smooth, kernel: conv3x3, params: {preset: smooth, border: constant, border_value: 9}, inputs: {in: "
+      "gray}}\n"
       "  - {name: gx, kernel: conv3x3, params: {preset: sobel_x, output: s16}, inputs: {in: gray}}\n"
       "  - {name: gxm, kernel: convert, params: {abs: true, shift: 1}, inputs: {in: gx}}\n"
       "  - {name: bin, kernel: threshold, params: {value: otsu}, inputs: {in: smooth}}\n"
@@ -518,17 +533,18 @@ TEST(ExecutorStripes, NodesEqualTheirKernelsOnTheWholeFrame) {
   smooth.border = {kn::BorderMode::constant, 9};
   kn::Bool3x3 erode;
   erode.table = kn::erode_table();
-  const kn::Lut2 mix = kn::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a > b ? a - b : 0); });
+  const kn::Lut2 mix =
+      kn::Lut2::from_function([](int a, int b) { return static_cast<std::uint8_t>(a > b ? a - b : 0); });
   const kn::ConvertS16 convert{true, 1};
 
-  for (const cv::Size size : {cv::Size(31, 37), cv::Size(33, 17), cv::Size(45, 1), cv::Size(1, 37), cv::Size(7, 2),
-                              cv::Size(64, 3)}) {
+  for (const cv::Size size :
+       {cv::Size(31, 37), cv::Size(33, 17), cv::Size(45, 1), cv::Size(1, 37), cv::Size(7, 2), cv::Size(64, 3)}) {
     for (int min_rows : {1, 2}) {
       SCOPED_TRACE(std::to_string(size.width) + "x" + std::to_string(size.height) + ", min_stripe_rows " +
                    std::to_string(min_rows));
       const auto frames = noise_frames(3, size, CV_8UC3, 300 + size.area());
-      const auto results =
-          pl::run_frames(compile_yaml(yaml), frames, {.threads = 8, .frames_in_flight = 2, .min_stripe_rows = min_rows});
+      const auto results = pl::run_frames(compile_yaml(yaml), frames,
+                                          {.threads = 8, .frames_in_flight = 2, .min_stripe_rows = min_rows});
       ASSERT_EQ(results.size(), frames.size());
       for (size_t f = 0; f < frames.size(); ++f) {
         SCOPED_TRACE("frame " + std::to_string(f));
@@ -585,7 +601,8 @@ class RowRecorder final : public pl::Node {
 std::vector<cv::Range> recorded_stripes(cv::Size size, int threads, int min_rows) {
   auto calls = std::make_shared<std::vector<cv::Range>>();
   pl::KernelRegistry r = pl::standard_kernels();
-  r.add({"record", "copies; records its row ranges", [calls](pl::NodeContext&) { return std::make_unique<RowRecorder>(calls); }});
+  r.add({"record", "copies; records its row ranges",
+         [calls](pl::NodeContext&) { return std::make_unique<RowRecorder>(calls); }});
   const auto frames = noise_frames(1, size, CV_8UC1, 900);
   const auto results = pl::run_frames(compile_yaml("nodes:\n"
                                                    "  - {name: src, kernel: source, params: {format: gray}}\n"
@@ -608,8 +625,8 @@ TEST(ExecutorStripes, StripesCoverEveryRowOnce) {
     int threads, min_rows;
     size_t min_stripes;  // at least this many non-empty stripes
   };
-  const Case cases[] = {{{9, 37}, 8, 1, 8}, {{9, 37}, 8, 2, 8}, {{5, 100}, 3, 16, 6}, {{5, 1}, 8, 1, 1},
-                        {{5, 37}, 1, 1, 1}, {{5, 15}, 4, 16, 1}};
+  const Case cases[] = {{{9, 37}, 8, 1, 8}, {{9, 37}, 8, 2, 8}, {{5, 100}, 3, 16, 6},
+                        {{5, 1}, 8, 1, 1},  {{5, 37}, 1, 1, 1}, {{5, 15}, 4, 16, 1}};
   for (const auto& c : cases) {
     SCOPED_TRACE(std::to_string(c.size.height) + " rows, " + std::to_string(c.threads) + " threads, min " +
                  std::to_string(c.min_rows));
@@ -655,8 +672,8 @@ TEST(Executor, ResultsInSubmissionOrderWithTheirIndices) {
                                  "  - {name: smooth, kernel: conv3x3, params: {preset: smooth}, inputs: {in: inv}}\n"
                                  "  - {name: hist, kernel: histogram, inputs: {in: smooth}}\n"
                                  "outputs: [smooth, hist]\n"),
-                     {.threads = 8, .frames_in_flight = 6, .min_stripe_rows = 1},
-                     [&](pl::FrameResult&& r) { results.push_back(std::move(r)); });
+                    {.threads = 8, .frames_in_flight = 6, .min_stripe_rows = 1},
+                    [&](pl::FrameResult&& r) { results.push_back(std::move(r)); });
     EXPECT_EQ(ex.threads(), 8);
     EXPECT_EQ(ex.frames_in_flight(), 6);
     for (size_t i = 0; i < frames.size(); ++i) ex.submit(1000 - 7 * static_cast<std::int64_t>(i), frames[i]);
@@ -688,8 +705,10 @@ TEST(Executor, OptionDefaults) {
 }
 
 TEST(Executor, RunFramesNumbersFromZero) {
-  const auto results = pl::run_frames(pl::compile(pl::blob_graph({.threshold = std::nullopt, .connectivity = 8, .source = pl::PortType::gray8}), pl::standard_kernels()),
-                                      noise_frames(5, {16, 16}, CV_8UC1, 5), {.threads = 2});
+  const auto results = pl::run_frames(
+      pl::compile(pl::blob_graph({.threshold = std::nullopt, .connectivity = 8, .source = pl::PortType::gray8}),
+                  pl::standard_kernels()),
+      noise_frames(5, {16, 16}, CV_8UC1, 5), {.threads = 2});
   ASSERT_EQ(results.size(), 5U);
   for (size_t i = 0; i < results.size(); ++i) EXPECT_EQ(results[i].index, static_cast<std::int64_t>(i));
 }
@@ -770,7 +789,8 @@ TEST(Executor, NodeErrorNamesNodeAndFrameAfterEarlierResults) {
 TEST(Executor, NodeErrorStillDeliversEveryEarlierFrame) {
   struct Hold final : pl::Node {
     explicit Hold(std::shared_ptr<Gate> g)
-        : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame), gate(std::move(g)) {}
+        : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame),
+          gate(std::move(g)) {}
     void begin_frame(pl::NodeIO& io) override {
       if (io.image(0).at<std::uint8_t>(0, 0) == 4) gate->arrive_and_wait();
       io.image(0).copyTo(io.out_image(0));
@@ -779,7 +799,8 @@ TEST(Executor, NodeErrorStillDeliversEveryEarlierFrame) {
   };
   struct Fail final : pl::Node {
     explicit Fail(std::shared_ptr<Gate> g)
-        : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame), gate(std::move(g)) {}
+        : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame),
+          gate(std::move(g)) {}
     void begin_frame(pl::NodeIO& io) override {
       if (io.image(0).at<std::uint8_t>(0, 0) == 5) {
         gate->wait_for_arrival();
@@ -837,9 +858,9 @@ TEST(Executor, FramesOfTheWrongTypeOrSize) {
   pl::Executor ex(pl::compile(pl::blob_graph(), pl::standard_kernels()), {.threads = 2},
                   [&](pl::FrameResult&& r) { results.push_back(std::move(r)); });
   const cv::Mat gray(24, 32, CV_8UC1, cv::Scalar(0));
-  EXPECT_THROW(ex.submit(0, gray), std::invalid_argument);                               // bgr8 graph
-  EXPECT_THROW(ex.submit(0, cv::Mat()), std::invalid_argument);                          // empty
-  EXPECT_THROW(ex.submit(0, cv::Mat(24, 32, CV_16UC3)), std::invalid_argument);          // 16 bits
+  EXPECT_THROW(ex.submit(0, gray), std::invalid_argument);                                // bgr8 graph
+  EXPECT_THROW(ex.submit(0, cv::Mat()), std::invalid_argument);                           // empty
+  EXPECT_THROW(ex.submit(0, cv::Mat(24, 32, CV_16UC3)), std::invalid_argument);           // 16 bits
   EXPECT_THROW((void)ex.try_submit(0, cv::Mat(24, 32, CV_8UC4)), std::invalid_argument);  // four channels
   const auto frames = moving_disc_frames(3, {32, 24}, 600);
   ex.submit(0, frames[0]);  // the stream's size is now 32x24
@@ -866,20 +887,23 @@ TEST(Executor, ImageOfTheWrongSizeFailsAtTheFirstFrame) {
   const TempDir dir("neopipe_executor_image_size");
   const std::string mask_path = (dir.path() / "mask.png").string();
   ASSERT_TRUE(cv::imwrite(mask_path, cv::Mat(10, 10, CV_8UC1, cv::Scalar(255))));
-  const std::string yaml = "nodes:\n"
-                           "  - {name: src, kernel: source, params: {format: gray}}\n"
-                           "  - name: mask\n"
-                           "    kernel: image\n"
-                           "    params: {path: '" + mask_path + "'}\n"
-                           "  - {name: masked, kernel: and, inputs: {a: src, b: mask}}\n"
-                           "outputs: masked\n";
+  const std::string yaml =
+      "nodes:\n"
+      "  - {name: src, kernel: source, params: {format: gray}}\n"
+      "  - name: mask\n"
+      "    kernel: image\n"
+      "    params: {path: '" +
+      mask_path +
+      "'}\n"
+      "  - {name: masked, kernel: and, inputs: {a: src, b: mask}}\n"
+      "outputs: masked\n";
   pl::Executor ex(compile_yaml(yaml), {.threads = 2}, [](pl::FrameResult&&) {});
   try {
     ex.submit(0, cv::Mat(10, 12, CV_8UC1, cv::Scalar(1)));
     ADD_FAILURE() << "a 12x10 frame was taken with a 10x10 image";
   } catch (const pl::GraphError& e) {
-    EXPECT_EQ(std::string(e.what()), "spec.yaml:3:5: node 'mask': size mismatch: image '" + mask_path +
-                                         "' is 10x10 but the frames are 12x10");
+    EXPECT_EQ(std::string(e.what()),
+              "spec.yaml:3:5: node 'mask': size mismatch: image '" + mask_path + "' is 10x10 but the frames are 12x10");
     EXPECT_EQ(e.where().line, 3);
   }
   // The same graph runs at the image's size.

@@ -82,8 +82,8 @@ TEST(Expr, ComparisonsAndLogic) {
   EXPECT_EQ(eval_ab("2 >= 3"), 0);
   EXPECT_EQ(eval_ab("3 == 3"), 1);
   EXPECT_EQ(eval_ab("3 != 3"), 0);
-  EXPECT_EQ(eval_ab("1 + 1 > 1"), 1);   // arithmetic binds tighter than comparison
-  EXPECT_EQ(eval_ab("1 < 2 == 1"), 1);  // comparisons chain left to right: (1 < 2) == 1
+  EXPECT_EQ(eval_ab("1 + 1 > 1"), 1);         // arithmetic binds tighter than comparison
+  EXPECT_EQ(eval_ab("1 < 2 == 1"), 1);        // comparisons chain left to right: (1 < 2) == 1
   EXPECT_EQ(eval_ab("0.1 + 0.2 == 0.3"), 0);  // plain double arithmetic
   EXPECT_EQ(eval_ab("!0"), 1);
   EXPECT_EQ(eval_ab("!5"), 0);

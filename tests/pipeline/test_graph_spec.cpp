@@ -9,15 +9,14 @@
 // frame by frame when both are compiled and run.
 
 #include <gtest/gtest.h>
-#include <opencv2/core.hpp>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
@@ -129,7 +128,7 @@ TEST(GraphSpecYaml, ReadsNodesInputsAndOutputs) {
   const pl::NodeSpec& src = g.nodes[0];
   EXPECT_EQ(src.name, "src");
   EXPECT_EQ(src.kernel, "source");
-  expect_location(src.where, 4, 5);         // the node's map starts at "name"
+  expect_location(src.where, 4, 5);          // the node's map starts at "name"
   expect_location(src.kernel_where, 5, 13);  // "source"
   ASSERT_TRUE(src.params.IsMap());
   EXPECT_EQ(src.params["format"].as<std::string>(), "gray");
@@ -194,7 +193,7 @@ TEST(GraphSpecYaml, ScalarOutputFlowNodesAndOptionalKeys) {
   EXPECT_TRUE(g.nodes[1].params.IsNull());  // "params:" with nothing is no parameters
   ASSERT_EQ(g.nodes[1].inputs.size(), 1U);
   EXPECT_FALSE(g.nodes[1].inputs[0].delayed);  // delay: 0 is an ordinary edge
-  ASSERT_EQ(g.outputs.size(), 1U);              // scalar form
+  ASSERT_EQ(g.outputs.size(), 1U);             // scalar form
   EXPECT_EQ(g.outputs[0].str(), "my-gray_2");
   expect_location(g.outputs[0].where, 7, 10);
 }
@@ -231,7 +230,8 @@ TEST(GraphSpecYaml, NegativeIntegerInitialIsAConstant) {
 }
 
 TEST(GraphSpecYaml, LoadsFromAFileNamedInMessages) {
-  const auto dir = std::filesystem::path(testing::TempDir()) / ("neopipe_graph_spec_file_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::path(testing::TempDir()) / ("neopipe_graph_spec_file_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string good = (dir / "good.yaml").string();
   const std::string bad = (dir / "bad.yaml").string();
@@ -686,9 +686,15 @@ TEST(GraphBuilder, ParamsAsYamlNodeOrText) {
   pl::GraphBuilder a;
   a.node("src", "source", "{format: gray}").node("bin", "threshold", params).connect("src", "bin.in").output("bin");
   pl::GraphBuilder b;
-  b.node("src", "source", "{format: gray}").node("bin", "threshold", "{value: 100}").connect("src", "bin.in").output("bin");
+  b.node("src", "source", "{format: gray}")
+      .node("bin", "threshold", "{value: 100}")
+      .connect("src", "bin.in")
+      .output("bin");
   pl::GraphBuilder other;  // another threshold, so the comparison can tell them apart
-  other.node("src", "source", "{format: gray}").node("bin", "threshold", "{value: 200}").connect("src", "bin.in").output("bin");
+  other.node("src", "source", "{format: gray}")
+      .node("bin", "threshold", "{value: 200}")
+      .connect("src", "bin.in")
+      .output("bin");
   const auto frames = random_gray_frames(3, {16, 9}, 5);
   expect_same_results(a.spec(), b.spec(), frames);
 

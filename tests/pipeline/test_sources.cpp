@@ -10,17 +10,16 @@
 // early as if it were complete.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "pipeline/io/frame_source.hpp"
 
@@ -63,10 +62,13 @@ void write_image(const std::string& path, const cv::Mat& image) {
   ASSERT_TRUE(cv::imwrite(path, image)) << path;
 }
 
-void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 // Writes `frames` as a video through OpenCV's FFmpeg backend; false if it could not.
-bool write_video(const std::string& path, int fourcc, const std::vector<cv::Mat>& frames, cv::Size size, double fps = 25) {
+bool write_video(const std::string& path, int fourcc, const std::vector<cv::Mat>& frames, cv::Size size,
+                 double fps = 25) {
   cv::VideoWriter w(path, cv::CAP_FFMPEG, fourcc, fps, size, true);
   if (!w.isOpened()) return false;
   for (const auto& f : frames) w.write(f);
@@ -289,7 +291,8 @@ TEST(FrameSourceErrors, TextFilesWithMediaNames) {
     (void)source->next();
     ADD_FAILURE() << "b.png was read";
   } catch (const io::SourceError& e) {
-    EXPECT_EQ(std::string(e.what()), seq.file("b.png") + ": not an image OpenCV can read (unknown format or corrupt file)");
+    EXPECT_EQ(std::string(e.what()),
+              seq.file("b.png") + ": not an image OpenCV can read (unknown format or corrupt file)");
   }
 }
 
@@ -329,8 +332,7 @@ TEST(FrameSourceErrors, SecondImageOfAnotherSize) {
     (void)source->next();
     ADD_FAILURE() << "an image of another size was accepted";
   } catch (const io::SourceError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              second + ": the image is 20x10 but the sequence started at 16x12 (" + first + ")");
+    EXPECT_EQ(std::string(e.what()), second + ": the image is 20x10 but the sequence started at 16x12 (" + first + ")");
   }
 }
 
@@ -382,7 +384,8 @@ TEST(FrameSourceErrors, TruncatedVideoIsAnErrorNotAnEarlyEnd) {
 }
 
 TEST(FrameSource, ImageExtensions) {
-  for (const char* yes : {"a.png", "b.PNG", "c.jpg", "d.JPEG", "e.bmp", "f.tif", "g.tiff", "h.pgm", "i.webp", "j.ppm"}) {
+  for (const char* yes :
+       {"a.png", "b.PNG", "c.jpg", "d.JPEG", "e.bmp", "f.tif", "g.tiff", "h.pgm", "i.webp", "j.ppm"}) {
     EXPECT_TRUE(io::has_image_extension(yes)) << yes;
   }
   for (const char* no : {"a.mp4", "b.avi", "c.mkv", "noext", "png", "dir.png/file", "a.png.txt", "a.yaml"}) {
