@@ -25,9 +25,7 @@ int guarded(const std::string& name, const std::function<int()>& body) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_main(int argc, char** argv) {
   CLI::App app("neopipe: a PIPE-style real-time image pipeline engine", "neopipe");
   app.require_subcommand(1);
   app.set_version_flag("--version", "neopipe 0.1.0");
@@ -63,4 +61,15 @@ int main(int argc, char** argv) {
   if (run->parsed()) return guarded("run", [&] { return run_command(run_args); });
   if (bench->parsed()) return guarded("bench", [&] { return bench_command(bench_args); });
   return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {  // only a bug gets here: every command reports its own errors
+    print_error("", e.what());
+    return kExitFailure;
+  }
 }

@@ -25,7 +25,7 @@ struct Frames {
 Frames make_frames(const BenchCase& c, int n) {
   Frames f;
   for (int i = 0; i < n; ++i) {
-    const auto seed = static_cast<std::uint64_t>(1000 * i + 17);
+    const auto seed = 1000 * static_cast<std::uint64_t>(i) + 17;
     f.images.push_back(c.name == "dots" ? make_dots_frame(c.size, 100, seed) : make_dense_frame(c.size, seed));
   }
   f.threshold = c.name == "dots" ? dots_threshold : dense_threshold(f.images.front());

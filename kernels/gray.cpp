@@ -14,7 +14,7 @@ constexpr int kRound = 1 << (kShift - 1);
 
 void bgr_to_gray_row(const std::uint8_t* bgr, std::uint8_t* out, int width) noexcept {
   for (int x = 0; x < width; ++x) {
-    const std::uint8_t* p = bgr + 3 * x;
+    const std::uint8_t* p = bgr + std::ptrdiff_t{3} * x;
     out[x] = static_cast<std::uint8_t>((p[0] * kB + p[1] * kG + p[2] * kR + kRound) >> kShift);
   }
 }

@@ -11,7 +11,7 @@ Lut2::Lut2() : table_(65536) {
 Lut2 Lut2::from_function(const std::function<std::uint8_t(int, int)>& f) {
   Lut2 t;
   for (int a = 0; a < 256; ++a) {
-    for (int b = 0; b < 256; ++b) t.table_[static_cast<size_t>(a * 256 + b)] = f(a, b);
+    for (int b = 0; b < 256; ++b) t.table_[static_cast<size_t>(a) * 256 + static_cast<size_t>(b)] = f(a, b);
   }
   return t;
 }

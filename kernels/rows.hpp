@@ -72,7 +72,7 @@ std::array<int, 9> gather3x3(const RowTriple<T>& r, int x, int width, const Bord
       } else {
         v = rows[dy][std::clamp(xx, 0, width - 1)];
       }
-      p[static_cast<size_t>(dy * 3 + dx + 1)] = v;
+      p[static_cast<size_t>(dy) * 3 + static_cast<size_t>(dx + 1)] = v;
     }
   }
   return p;

@@ -14,8 +14,8 @@ bool parse_number(const std::string& text, T& out) {
 
 }  // namespace
 
-ParamReader::ParamReader(YAML::Node params, SourceLocation node_where, std::string kernel)
-    : params_(std::move(params)), node_where_(std::move(node_where)), kernel_(std::move(kernel)) {}
+ParamReader::ParamReader(const YAML::Node& params, SourceLocation node_where, std::string kernel)
+    : params_(params), node_where_(std::move(node_where)), kernel_(std::move(kernel)) {}
 
 YAML::Node ParamReader::value(const std::string& name) {
   known_.insert(name);

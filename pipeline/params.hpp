@@ -17,7 +17,7 @@ namespace neopipe::pipeline {
 
 class ParamReader {
  public:
-  ParamReader(YAML::Node params, SourceLocation node_where, std::string kernel);
+  ParamReader(const YAML::Node& params, SourceLocation node_where, std::string kernel);
 
   bool has(const std::string& name);
   int get_int(const std::string& name, int fallback, int min, int max);

@@ -93,7 +93,8 @@ cv::Mat conv3x3(const cv::Mat& src, const Conv3x3& k, int dst_type) {
     int acc = 0;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
-        acc += k.weights[static_cast<size_t>((dy + 1) * 3 + dx + 1)] * pixel_at(src, x + dx, y + dy, k.border);
+        acc += k.weights[static_cast<size_t>(dy + 1) * 3 + static_cast<size_t>(dx + 1)] *
+               pixel_at(src, x + dx, y + dy, k.border);
       }
     }
     return round_shift(acc, k.shift);

@@ -29,7 +29,7 @@ class Bool3x3Node final : public Node {
  public:
   explicit Bool3x3Node(kernels::Bool3x3 k)
       : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3, FrameOrder::any),
-        k_(std::move(k)) {}
+        k_(k) {}
   void run_rows(NodeIO& io, cv::Range rows) const override { kernels::bool3x3(io.image(0), io.out_image(0), k_, rows); }
 
  private:
@@ -123,7 +123,7 @@ void register_neighbourhood_nodes(KernelRegistry& r) {
            k.table = bool_table_params(c.params);
            k.high = static_cast<std::uint8_t>(c.params.get_int("high", 255, 1, 255));
            k.border = border_params(c.params, 1);
-           return std::make_unique<Bool3x3Node>(std::move(k));
+           return std::make_unique<Bool3x3Node>(k);
          }});
 }
 
