@@ -37,28 +37,14 @@
 #include "pipeline/kernel_registry.hpp"
 #include "pipeline/run_stats.hpp"
 #include "pipeline/stream_runner.hpp"
+#include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
+using namespace neopipe::pipeline::testing;  // NOLINT(google-build-using-namespace)
 namespace io = neopipe::pipeline::io;
 namespace fs = std::filesystem;
 
 namespace {
-
-class TempDir {
- public:
-  // Unique per process, so concurrent runs of the suite do not share files.
-  explicit TempDir(const std::string& name)
-      : path_(fs::path(testing::TempDir()) / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::string str() const { return path_.string(); }
-
- private:
-  fs::path path_;
-};
 
 neopipe::kernels::Blob make_blob(std::int64_t area, int x0, int y0, int w, int h, double cx, double cy, double wcx,
                                  double wcy, double mu20, double mu11, double mu02) {

@@ -27,19 +27,15 @@
 #include "pipeline/executor.hpp"
 #include "pipeline/graph_spec.hpp"
 #include "pipeline/kernel_registry.hpp"
+#include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
+using namespace neopipe::pipeline::testing;  // NOLINT(google-build-using-namespace)
 namespace fs = std::filesystem;
 
 namespace {
 
 const char* const kOrigin = "spec.yaml";
-
-std::string yaml_lines(std::initializer_list<const char*> lines) {
-  std::string s;
-  for (const char* l : lines) s.append(l).append("\n");
-  return s;
-}
 
 // Splits a gray image into its bright part ("hi": pixels > 127, others 0) and its dark part ("lo").
 class SplitNode final : public pl::Node {
@@ -116,25 +112,6 @@ std::vector<cv::Mat> disc_frames(int count, cv::Size size, std::uint64_t seed) {
     frames.push_back(f);
   }
   return frames;
-}
-
-void expect_same_blobs(const pl::BlobList& a, const pl::BlobList& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    SCOPED_TRACE("blob " + std::to_string(i));
-    EXPECT_EQ(a[i].area, b[i].area);
-    EXPECT_EQ(a[i].x0, b[i].x0);
-    EXPECT_EQ(a[i].y0, b[i].y0);
-    EXPECT_EQ(a[i].width, b[i].width);
-    EXPECT_EQ(a[i].height, b[i].height);
-    EXPECT_EQ(a[i].cx, b[i].cx);
-    EXPECT_EQ(a[i].cy, b[i].cy);
-    EXPECT_EQ(a[i].wcx, b[i].wcx);
-    EXPECT_EQ(a[i].wcy, b[i].wcy);
-    EXPECT_EQ(a[i].mu20, b[i].mu20);
-    EXPECT_EQ(a[i].mu11, b[i].mu11);
-    EXPECT_EQ(a[i].mu02, b[i].mu02);
-  }
 }
 
 std::vector<fs::path> example_specs() {

@@ -42,8 +42,10 @@
 #include "pipeline/executor.hpp"
 #include "pipeline/graph_spec.hpp"
 #include "pipeline/kernel_registry.hpp"
+#include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
+using namespace neopipe::pipeline::testing;  // NOLINT(google-build-using-namespace)
 namespace kn = neopipe::kernels;
 namespace fs = std::filesystem;
 
@@ -123,25 +125,6 @@ std::vector<cv::Mat> numbered_frames(int count, cv::Size size = {8, 6}) {
 
 bool same_image(const cv::Mat& a, const cv::Mat& b) {
   return a.size() == b.size() && a.type() == b.type() && (a.empty() || cv::norm(a, b, cv::NORM_INF) == 0);
-}
-
-void expect_same_blobs(const pl::BlobList& a, const pl::BlobList& b, const std::string& what) {
-  ASSERT_EQ(a.size(), b.size()) << what;
-  for (size_t i = 0; i < a.size(); ++i) {
-    SCOPED_TRACE(what + ", blob " + std::to_string(i));
-    EXPECT_EQ(a[i].area, b[i].area);
-    EXPECT_EQ(a[i].x0, b[i].x0);
-    EXPECT_EQ(a[i].y0, b[i].y0);
-    EXPECT_EQ(a[i].width, b[i].width);
-    EXPECT_EQ(a[i].height, b[i].height);
-    EXPECT_EQ(a[i].cx, b[i].cx);
-    EXPECT_EQ(a[i].cy, b[i].cy);
-    EXPECT_EQ(a[i].wcx, b[i].wcx);
-    EXPECT_EQ(a[i].wcy, b[i].wcy);
-    EXPECT_EQ(a[i].mu20, b[i].mu20);
-    EXPECT_EQ(a[i].mu11, b[i].mu11);
-    EXPECT_EQ(a[i].mu02, b[i].mu02);
-  }
 }
 
 void expect_same_value(const pl::Value& a, const pl::Value& b, const std::string& what) {
@@ -363,21 +346,6 @@ size_t total_blobs(const std::vector<pl::FrameResult>& results, size_t output) {
   for (const auto& r : results) n += std::get<pl::BlobList>(r.outputs.at(output)).size();
   return n;
 }
-
-class TempDir {
- public:
-  // Unique per process, so concurrent runs of the suite do not share files.
-  explicit TempDir(const std::string& name)
-      : path_(fs::path(testing::TempDir()) / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 }  // namespace
 

@@ -21,19 +21,14 @@
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
 #include "pipeline/graph_spec.hpp"
+#include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
+using namespace neopipe::pipeline::testing;  // NOLINT(google-build-using-namespace)
 
 namespace {
 
 const char* const kOrigin = "spec.yaml";
-
-// Joins lines with '\n', so each test's YAML shows its line numbers one line per entry.
-std::string yaml_lines(std::initializer_list<const char*> lines) {
-  std::string s;
-  for (const char* l : lines) s.append(l).append("\n");
-  return s;
-}
 
 // Parses `yaml`, which must fail, and returns the GraphError's what().
 std::string spec_error(const std::string& yaml) {

@@ -22,28 +22,14 @@
 #include <vector>
 
 #include "pipeline/io/frame_source.hpp"
+#include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
+using namespace neopipe::pipeline::testing;  // NOLINT(google-build-using-namespace)
 namespace io = neopipe::pipeline::io;
 namespace fs = std::filesystem;
 
 namespace {
-
-class TempDir {
- public:
-  // Unique per process, so concurrent runs of the suite do not share files.
-  explicit TempDir(const std::string& name)
-      : path_(fs::path(testing::TempDir()) / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  std::string str() const { return path_.string(); }
-
- private:
-  fs::path path_;
-};
 
 // Smooth random colour images (so that JPEG-style codecs keep them close), all different.
 std::vector<cv::Mat> colour_frames(int count, cv::Size size, std::uint64_t seed) {
