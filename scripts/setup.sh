@@ -8,6 +8,7 @@ packages=(
   libopencv-dev          # codecs, video I/O, reference implementations
   libeigen3-dev          # geometry (calibration, navigation)
   libtbb-dev             # oneTBB: the scheduler's threads
+  libhwy-dev             # Highway: SIMD in the kernels
   libyaml-cpp-dev        # graph specs, worlds
   libcli11-dev           # the command line
   libfmt-dev
