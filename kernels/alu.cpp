@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "kernels/rows.hpp"
+#include "kernels/simd.hpp"
 
 namespace neopipe::kernels {
 namespace {
@@ -19,10 +20,21 @@ constexpr std::array<std::pair<AluOp, std::string_view>, 8> kNames{{{AluOp::add,
                                                                     {AluOp::bit_or, "or"},
                                                                     {AluOp::bit_xor, "xor"}}};
 
-// One loop per operation, with the operation known at compile time, so each loop vectorises.
-template <class F>
-void each(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width, F f) {
-  for (int x = 0; x < width; ++x) out[x] = static_cast<std::uint8_t>(f(int{a[x]}, int{b[x]}));
+// One loop per operation, with the operation known at compile time: `vec` on whole vectors, `f` on
+// pixels at the end of short rows.
+template <class VecOp, class F>
+void each(const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width, [[maybe_unused]] VecOp vec, F f) {
+  const auto scalar = [&](size_t x0, size_t x1) {
+    for (size_t x = x0; x < x1; ++x) out[x] = static_cast<std::uint8_t>(f(int{a[x]}, int{b[x]}));
+  };
+#if HWY_TARGET != HWY_SCALAR
+  const simd::hn::ScalableTag<std::uint8_t> d;
+  simd::point_row(
+      d, out, static_cast<size_t>(width),
+      [&](size_t x) { return vec(simd::hn::LoadU(d, a + x), simd::hn::LoadU(d, b + x)); }, scalar);
+#else
+  scalar(0, static_cast<size_t>(width));
+#endif
 }
 
 }  // namespace
@@ -42,23 +54,36 @@ std::optional<AluOp> alu_op_from_string(std::string_view name) {
 }
 
 void alu_row(AluOp op, const std::uint8_t* a, const std::uint8_t* b, std::uint8_t* out, int width) noexcept {
+  namespace hn = simd::hn;
   switch (op) {
     case AluOp::add:
-      return each(a, b, out, width, [](int p, int q) { return std::min(p + q, 255); });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::SaturatedAdd(p, q); },
+          [](int p, int q) { return std::min(p + q, 255); });
     case AluOp::sub:
-      return each(a, b, out, width, [](int p, int q) { return std::max(p - q, 0); });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::SaturatedSub(p, q); },
+          [](int p, int q) { return std::max(p - q, 0); });
     case AluOp::absdiff:
-      return each(a, b, out, width, [](int p, int q) { return std::abs(p - q); });
+      // Of the two saturated differences one is |p - q| and the other 0.
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::Or(hn::SaturatedSub(p, q), hn::SaturatedSub(q, p)); },
+          [](int p, int q) { return std::abs(p - q); });
     case AluOp::min:
-      return each(a, b, out, width, [](int p, int q) { return std::min(p, q); });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::Min(p, q); }, [](int p, int q) { return std::min(p, q); });
     case AluOp::max:
-      return each(a, b, out, width, [](int p, int q) { return std::max(p, q); });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::Max(p, q); }, [](int p, int q) { return std::max(p, q); });
     case AluOp::bit_and:
-      return each(a, b, out, width, [](int p, int q) { return p & q; });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::And(p, q); }, [](int p, int q) { return p & q; });
     case AluOp::bit_or:
-      return each(a, b, out, width, [](int p, int q) { return p | q; });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::Or(p, q); }, [](int p, int q) { return p | q; });
     case AluOp::bit_xor:
-      return each(a, b, out, width, [](int p, int q) { return p ^ q; });
+      return each(
+          a, b, out, width, [](auto p, auto q) { return hn::Xor(p, q); }, [](int p, int q) { return p ^ q; });
   }
 }
 

@@ -1,8 +1,11 @@
 #include "kernels/blobs.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <numeric>
+#include <utility>
 
+#include "kernels/blob_runs.hpp"
 #include "kernels/rows.hpp"
 
 namespace neopipe::kernels {
@@ -19,22 +22,24 @@ constexpr std::int64_t sum_sq_to(std::int64_t n) {
   return (n - 1) * n * (2 * n - 1) / 6;
 }
 
-struct Run {
-  int xs;     // first pixel
-  int xe;     // one past the last pixel
-  int label;  // provisional label (a union-find node)
-};
-
-struct StoredRun {
-  int y;
-  Run run;
-};
+using detail::Run;
 
 // Provisional labels are created in raster order of the run that starts them, and a component's
 // first run always starts a new label (nothing above it can belong to it). Keeping the smaller label
-// as the root on every union therefore makes each root the component's raster-first label.
-class Components {
+// as the root on every union therefore makes each root its component's raster-first label, and
+// keeps parent <= label everywhere, which lets number_components fold the forest in one pass.
+//
+// Each label sums the runs it was given, not its root's: a run that touches a single run above
+// takes that run's label without a find, and the sums meet their root once, at the end.
+class LabelForest {
  public:
+  LabelForest() = default;
+  /// A forest of singletons with the given sums (the pieces of stripes).
+  explicit LabelForest(std::vector<BlobMoments> moments) : moments_(std::move(moments)) {
+    parent_.resize(moments_.size());
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+
   int create() {
     const int label = static_cast<int>(parent_.size());
     parent_.push_back(label);
@@ -43,42 +48,118 @@ class Components {
   }
 
   int find(int label) {
-    int root = label;
-    while (parent_[static_cast<size_t>(root)] != root) root = parent_[static_cast<size_t>(root)];
-    while (parent_[static_cast<size_t>(label)] != root) {
-      const int next = parent_[static_cast<size_t>(label)];
-      parent_[static_cast<size_t>(label)] = root;
-      label = next;
+    // Path halving: one pass, and parent <= label still holds.
+    while (parent_[idx(label)] != label) {
+      const int grandparent = parent_[idx(parent_[idx(label)])];
+      parent_[idx(label)] = grandparent;
+      label = grandparent;
     }
-    return root;
+    return label;
   }
 
-  // Joins two roots; returns the surviving root.
+  /// Joins the trees of two roots; returns the surviving root.
   int unite(int a, int b) {
-    if (a == b) return a;
     if (b < a) std::swap(a, b);
-    parent_[static_cast<size_t>(b)] = a;
-    moments_[static_cast<size_t>(a)].merge(moments_[static_cast<size_t>(b)]);
+    parent_[idx(b)] = a;
     return a;
   }
 
-  BlobMoments& moments(int root) { return moments_[static_cast<size_t>(root)]; }
-  int size() const { return static_cast<int>(parent_.size()); }
+  BlobMoments& moments(int label) { return moments_[idx(label)]; }
+
+  /// Numbers the components 0, 1, ... in order of their root label (raster order of their first
+  /// pixel) and folds every label's sums into its component's. Afterwards component(label) is the
+  /// number of label's component, and component_moments() holds the components' sums in order.
+  void number_components() {
+    int count = 0;
+    for (int l = 0; l < static_cast<int>(parent_.size()); ++l) {
+      const int p = parent_[idx(l)];
+      if (p == l) {
+        // Components only move down: slot `count` is free, as its label was folded already.
+        if (count != l) moments_[idx(count)] = moments_[idx(l)];
+        parent_[idx(l)] = count++;
+      } else {
+        // p < l was renumbered already, whether root or not: its entry holds its component.
+        const int c = parent_[idx(p)];
+        parent_[idx(l)] = c;
+        moments_[idx(c)].merge(moments_[idx(l)]);
+      }
+    }
+    moments_.resize(idx(count));
+  }
+
+  int component(int label) const { return parent_[idx(label)]; }
+  std::vector<BlobMoments>& component_moments() { return moments_; }
 
  private:
+  static std::size_t idx(int label) { return static_cast<std::size_t>(label); }
+
   std::vector<int> parent_;
   std::vector<BlobMoments> moments_;
 };
 
-void find_runs(const std::uint8_t* row, int width, std::uint8_t t, std::vector<Run>& runs) {
-  int x = 0;
-  while (x < width) {
-    while (x < width && row[x] <= t) ++x;
-    if (x == width) break;
-    const int xs = x;
-    while (x < width && row[x] > t) ++x;
-    runs.push_back({xs, x, -1});
+// Labels rows [rows.start, rows.end) of src into `forest`, calling on_row(y, runs, n) with each
+// row's runs once they carry their labels.
+template <class OnRow>
+void label_rows(const cv::Mat& src, const cv::Mat& weights, const BlobParams& params, cv::Range rows,
+                LabelForest& forest, OnRow&& on_row) {
+  const int width = src.cols;
+  // A run above touches [xs, xe) when it overlaps it; with 8-connectivity also diagonally.
+  const int reach = params.connectivity == Connectivity::eight ? 1 : 0;
+  std::vector<Run> buffers(2 * static_cast<std::size_t>(detail::max_runs(width)));
+  Run* above = buffers.data();
+  Run* current = above + detail::max_runs(width);
+  int n_above = 0;
+  for (int y = rows.start; y < rows.end; ++y) {
+    int n = 0;
+    if (params.threshold < 0) {
+      current[0] = {0, width, 0};
+      n = 1;
+    } else {
+      n = detail::find_runs(src.ptr<std::uint8_t>(y), width, static_cast<std::uint8_t>(params.threshold), current);
+    }
+    const std::uint8_t* wrow = weights.ptr<std::uint8_t>(y);
+    int j = 0;
+    for (int i = 0; i < n; ++i) {
+      Run& run = current[i];
+      while (j < n_above && above[j].xe + reach <= run.xs) ++j;
+      int k = j;
+      int label = 0;
+      if (k < n_above && above[k].xs < run.xe + reach) {
+        label = above[k].label;
+        for (++k; k < n_above && above[k].xs < run.xe + reach; ++k) {
+          const int a = forest.find(label);
+          const int b = forest.find(above[k].label);
+          label = a == b ? a : forest.unite(a, b);
+        }
+      } else {
+        label = forest.create();
+      }
+      run.label = label;
+      forest.moments(label).add_run(y, run.xs, run.xe, wrow);
+    }
+    on_row(y, static_cast<const Run*>(current), n);
+    std::swap(above, current);
+    n_above = n;
   }
+}
+
+// Checks extract_blobs' and label_stripe's arguments; returns the weight image to use.
+const cv::Mat& checked_weights(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights) {
+  detail::require_type(src, CV_8UC1, "blobs input");
+  detail::require(params.threshold >= -1 && params.threshold <= 255, "blobs: threshold must lie in -1..255");
+  detail::require(params.connectivity == Connectivity::four || params.connectivity == Connectivity::eight,
+                  "blobs: connectivity must be 4 or 8");
+  const cv::Mat& w = weights.empty() ? src : weights;
+  detail::require_type(w, CV_8UC1, "blobs weights");
+  detail::require_same_size(src, w, "blobs input and weights");
+  return w;
+}
+
+std::vector<Blob> to_blobs(const std::vector<BlobMoments>& components) {
+  std::vector<Blob> blobs;
+  blobs.reserve(components.size());
+  for (const auto& m : components) blobs.push_back(to_blob(m));
+  return blobs;
 }
 
 }  // namespace
@@ -87,12 +168,7 @@ void BlobMoments::add_run(int y, int xs, int xe, const std::uint8_t* weights) no
   const std::int64_t n = xe - xs;
   const std::int64_t run_sx = sum_to(xe) - sum_to(xs);
   const std::int64_t yy = y;
-  std::int64_t run_sw = 0;
-  std::int64_t run_swx = 0;
-  for (int x = xs; x < xe; ++x) {
-    run_sw += weights[x];
-    run_swx += std::int64_t{weights[x]} * x;
-  }
+  const auto [run_sw, run_swx] = detail::weight_sums(weights, xs, xe);
   if (area == 0) {
     x0 = xs;
     y0 = y;
@@ -167,60 +243,107 @@ Blob to_blob(const BlobMoments& m) noexcept {
 }
 
 std::vector<Blob> extract_blobs(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights, cv::Mat* labels) {
-  detail::require_type(src, CV_8UC1, "blobs input");
-  detail::require(params.threshold >= -1 && params.threshold <= 255, "blobs: threshold must lie in -1..255");
-  const cv::Mat& w = weights.empty() ? src : weights;
-  detail::require_type(w, CV_8UC1, "blobs weights");
-  detail::require_same_size(src, w, "blobs input and weights");
-
-  const bool eight = params.connectivity == Connectivity::eight;
-  // A run above touches [xs, xe) when it overlaps it; with 8-connectivity also diagonally.
-  const int reach = eight ? 1 : 0;
-  Components comps;
-  std::vector<Run> above;
-  std::vector<Run> current;
+  const cv::Mat& w = checked_weights(src, params, weights);
+  struct StoredRun {
+    int y;
+    Run run;
+  };
+  LabelForest forest;
   std::vector<StoredRun> all_runs;
-
-  for (int y = 0; y < src.rows; ++y) {
-    current.clear();
-    if (params.threshold < 0) {
-      current.push_back({0, src.cols, -1});
-    } else {
-      find_runs(src.ptr<std::uint8_t>(y), src.cols, static_cast<std::uint8_t>(params.threshold), current);
+  label_rows(src, w, params, {0, src.rows}, forest, [&](int y, const Run* runs, int n) {
+    if (labels != nullptr) {
+      for (int i = 0; i < n; ++i) all_runs.push_back({y, runs[i]});
     }
-    const std::uint8_t* wrow = w.ptr<std::uint8_t>(y);
-    size_t j = 0;
-    for (Run& run : current) {
-      while (j < above.size() && above[j].xe + reach <= run.xs) ++j;
-      int label = -1;
-      for (size_t k = j; k < above.size() && above[k].xs < run.xe + reach; ++k) {
-        const int root = comps.find(above[k].label);
-        label = label < 0 ? root : comps.unite(label, root);
-      }
-      if (label < 0) label = comps.create();
-      run.label = label;
-      comps.moments(label).add_run(y, run.xs, run.xe, wrow);
-      if (labels != nullptr) all_runs.push_back({y, run});
-    }
-    std::swap(above, current);
-  }
-
-  std::vector<Blob> blobs;
-  std::vector<int> final_label(static_cast<size_t>(comps.size()), 0);
-  for (int l = 0; l < comps.size(); ++l) {
-    if (comps.find(l) != l) continue;
-    blobs.push_back(to_blob(comps.moments(l)));
-    final_label[static_cast<size_t>(l)] = static_cast<int>(blobs.size());
-  }
+  });
+  forest.number_components();
   if (labels != nullptr) {
     labels->create(src.size(), CV_32SC1);
     labels->setTo(0);
     for (const auto& [y, run] : all_runs) {
-      const int l = final_label[static_cast<size_t>(comps.find(run.label))];
-      std::fill(labels->ptr<int>(y) + run.xs, labels->ptr<int>(y) + run.xe, l);
+      std::fill(labels->ptr<int>(y) + run.xs, labels->ptr<int>(y) + run.xe, forest.component(run.label) + 1);
     }
   }
-  return blobs;
+  return to_blobs(forest.component_moments());
+}
+
+BlobStripe label_stripe(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights, cv::Range rows) {
+  const cv::Mat& w = checked_weights(src, params, weights);
+  if (rows == cv::Range::all()) rows = {0, src.rows};
+  rows.start = std::clamp(rows.start, 0, src.rows);
+  rows.end = std::clamp(rows.end, rows.start, src.rows);
+  BlobStripe stripe;
+  stripe.frame_ = src.size();
+  stripe.params_ = params;
+  stripe.rows_ = rows;
+  if (rows.empty()) return stripe;
+  LabelForest forest;
+  // Provisional labels for now; turned into piece numbers once the forest is folded.
+  const auto keep = [](std::vector<BlobStripe::EdgeRun>& edge, const Run* runs, int n) {
+    edge.reserve(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) edge.push_back({runs[i].xs, runs[i].xe, runs[i].label});
+  };
+  label_rows(src, w, params, rows, forest, [&](int y, const Run* runs, int n) {
+    if (y == rows.start) keep(stripe.top_, runs, n);
+    if (y == rows.end - 1) keep(stripe.bottom_, runs, n);
+  });
+  forest.number_components();
+  for (auto* edge : {&stripe.top_, &stripe.bottom_}) {
+    for (auto& run : *edge) run.piece = forest.component(run.piece);
+  }
+  stripe.pieces_ = std::move(forest.component_moments());
+  return stripe;
+}
+
+std::vector<Blob> merge_stripes(std::vector<BlobStripe> stripes, const BlobParams& params) {
+  detail::require(!stripes.empty(), "merge_stripes: no stripes");
+  const cv::Size frame = stripes.front().frame_;
+  detail::require(frame.width > 0 && frame.height > 0, "merge_stripes: a stripe was not made by label_stripe");
+  int next_row = 0;
+  std::size_t total = 0;
+  for (const auto& s : stripes) {
+    detail::require(s.frame_ == frame, "merge_stripes: stripes of frames of different sizes");
+    detail::require(s.params_.threshold == params.threshold && s.params_.connectivity == params.connectivity,
+                    "merge_stripes: a stripe was labelled with other parameters");
+    if (s.rows_.empty()) continue;
+    detail::require(s.rows_.start == next_row,
+                    "merge_stripes: stripes must cover the frame's rows top to bottom without gaps or overlaps");
+    next_row = s.rows_.end;
+    total += s.pieces_.size();
+  }
+  detail::require(next_row == frame.height,
+                  "merge_stripes: stripes must cover the frame's rows top to bottom without gaps or overlaps");
+
+  // Pieces numbered stripe after stripe, each stripe's in raster order, are numbered in raster order
+  // of their first pixel over the whole frame, which is what LabelForest needs.
+  std::vector<BlobMoments> pieces;
+  pieces.reserve(total);
+  for (const auto& s : stripes) pieces.insert(pieces.end(), s.pieces_.begin(), s.pieces_.end());
+  LabelForest forest(std::move(pieces));
+  const int reach = params.connectivity == Connectivity::eight ? 1 : 0;
+  const BlobStripe* upper = nullptr;
+  int upper_base = 0;
+  int base = 0;
+  for (const auto& s : stripes) {
+    if (s.rows_.empty()) continue;
+    if (upper != nullptr) {
+      // The same touching rule as between the rows of one stripe.
+      const auto& above = upper->bottom_;
+      std::size_t j = 0;
+      for (const auto& run : s.top_) {
+        while (j < above.size() && above[j].xe + reach <= run.xs) ++j;
+        for (std::size_t k = j; k < above.size() && above[k].xs < run.xe + reach; ++k) {
+          const int a = forest.find(upper_base + above[k].piece);
+          const int b = forest.find(base + run.piece);
+          if (a != b) forest.unite(a, b);
+        }
+      }
+    }
+    upper = &s;
+    upper_base = base;
+    base += static_cast<int>(s.pieces_.size());
+  }
+  forest.number_components();
+  return to_blobs(forest.component_moments());
 }
 
 }  // namespace neopipe::kernels

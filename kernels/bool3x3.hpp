@@ -27,15 +27,26 @@ inline constexpr Footprint bool3x3_footprint = Footprint::neighbourhood3x3;
 
 class BoolTable {
  public:
-  BoolTable() = default;
-  explicit BoolTable(const std::bitset<512>& bits) : bits_(bits) {}
+  /// Tables the kernel recognises and runs as a plain minimum or maximum over the neighbourhood.
+  enum class Kind { general, erode, dilate };
+
+  BoolTable() : BoolTable(std::bitset<512>{}) {}
+  explicit BoolTable(const std::bitset<512>& bits);
   static BoolTable from_function(const std::function<bool(unsigned index)>& f);
 
   bool operator[](unsigned index) const { return bits_[index]; }
   const std::bitset<512>& bits() const { return bits_; }
+  /// erode_table() or dilate_table(), however they were built; otherwise general.
+  Kind kind() const noexcept { return kind_; }
+  /// The table as 64 bytes, entry i at bit i % 8 of byte i / 8, ready for byte-shuffle lookups.
+  const std::array<std::uint8_t, 64>& packed() const noexcept { return packed_; }
 
  private:
+  // The table never changes after construction, so what the kernel needs is derived here once
+  // rather than on every row.
   std::bitset<512> bits_;
+  Kind kind_ = Kind::general;
+  std::array<std::uint8_t, 64> packed_{};
 };
 
 /// Set where all nine pixels are set: erosion by a 3x3 square.

@@ -4,11 +4,25 @@
 #include <cfloat>
 
 #include "kernels/rows.hpp"
+#include "kernels/simd.hpp"
 
 namespace neopipe::kernels {
 
 void threshold_row(const std::uint8_t* in, std::uint8_t* out, int width, std::uint8_t t, std::uint8_t high) noexcept {
-  for (int x = 0; x < width; ++x) out[x] = in[x] > t ? high : std::uint8_t{0};
+  const auto scalar = [&](size_t x0, size_t x1) {
+    for (size_t x = x0; x < x1; ++x) out[x] = in[x] > t ? high : std::uint8_t{0};
+  };
+#if HWY_TARGET != HWY_SCALAR
+  namespace hn = simd::hn;
+  const hn::ScalableTag<std::uint8_t> d;
+  const auto vt = hn::Set(d, t);
+  const auto vhigh = hn::Set(d, high);
+  simd::point_row(
+      d, out, static_cast<size_t>(width),
+      [&](size_t x) { return hn::IfThenElseZero(hn::Gt(hn::LoadU(d, in + x), vt), vhigh); }, scalar);
+#else
+  scalar(0, static_cast<size_t>(width));
+#endif
 }
 
 void threshold(const cv::Mat& src, cv::Mat& dst, int t, std::uint8_t high, cv::Range rows) {

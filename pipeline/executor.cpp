@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pipeline/fusion.hpp"
+
 namespace neopipe::pipeline {
 namespace {
 
@@ -37,17 +39,47 @@ class Executor::Impl {
         threads_(o.threads > 0 ? o.threads : tbb::info::default_concurrency()),
         frames_in_flight_(o.frames_in_flight > 0 ? std::max(o.frames_in_flight, 2) : threads_ + 2),
         min_stripe_rows_(std::max(o.min_stripe_rows, 1)),
+        fused_stripe_rows_(std::max(o.fused_stripe_rows, 0)),
         on_result_(std::move(handler)),
         // The driver thread does not join the arena, so the pool needs `threads_` workers of its own.
         control_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads_) + 1),
         arena_(threads_, 0) {
     const size_t n = graph_.nodes().size();
+    // A task runs a step: one node, or a fused group named by its sink. Absorbed members have no
+    // task; their inputs from outside the group become the sink's.
+    absorbed_.assign(n, false);
+    fused_.resize(n);
+    step_inputs_.resize(n);
+    in_order_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      in_order_[i] = graph_.nodes()[i].impl->frame_order() == FrameOrder::in_order;
+      for (size_t k = 0; k < graph_.nodes()[i].inputs.size(); ++k) step_inputs_[i].push_back({static_cast<int>(i), k});
+    }
+    if (o.fuse) {
+      for (auto& members : plan_fusion(graph_)) {
+        auto step = std::make_unique<FusedStep>(graph_, std::move(members));
+        const auto sink = static_cast<size_t>(step->sink());
+        step_inputs_[sink].clear();
+        for (const int m : step->members()) {
+          const auto mi = static_cast<size_t>(m);
+          for (size_t k = 0; k < graph_.nodes()[mi].inputs.size(); ++k) {
+            if (!step->internal(m, k)) step_inputs_[sink].push_back({m, k});
+          }
+          if (m != step->sink()) {
+            absorbed_[mi] = true;
+            step_inputs_[mi].clear();
+            in_order_[sink] = in_order_[sink] || in_order_[mi];
+          }
+        }
+        fused_[sink] = std::move(step);
+      }
+    }
     consumers_now_.resize(n);
     consumers_next_.resize(n);
     consumers_first_.resize(n);
-    for (const auto& node : graph_.nodes()) in_order_.push_back(node.impl->frame_order() == FrameOrder::in_order);
     for (size_t c = 0; c < n; ++c) {
-      for (const auto& in : graph_.nodes()[c].inputs) {
+      for (const auto& [member, k] : step_inputs_[c]) {
+        const auto& in = graph_.nodes()[static_cast<size_t>(member)].inputs[k];
         if (!in.from.valid()) continue;
         const auto p = static_cast<size_t>(in.from.node);
         (in.delayed ? consumers_next_ : consumers_now_)[p].push_back(static_cast<int>(c));
@@ -150,6 +182,9 @@ class Executor::Impl {
         throw GraphError(n.where, "node '" + n.name + "': " + e.what());
       }
     }
+    for (auto& step : fused_) {
+      if (step) step->configure(size, fused_stripe_rows_);
+    }
     initial_values_.resize(graph_.nodes().size());
     for (size_t i = 0; i < graph_.nodes().size(); ++i) {
       const auto& node = graph_.nodes()[i];
@@ -188,12 +223,19 @@ class Executor::Impl {
     s.values[src][0] = frame;
     s.done[src] = 1;
     s.remaining = static_cast<int>(n) - 1;
+    for (size_t i = 0; i < n; ++i) {
+      if (absorbed_[i]) {
+        s.done[i] = 1;  // runs inside its group's step
+        --s.remaining;
+      }
+    }
     const Slot* prev = seq > 0 ? &slot(seq - 1) : nullptr;
     std::vector<Task> ready;
     for (size_t i = 0; i < n; ++i) {
-      if (i == src) continue;
+      if (i == src || absorbed_[i]) continue;
       int pending = 0;
-      for (const auto& in : graph_.nodes()[i].inputs) {
+      for (const auto& [member, k] : step_inputs_[i]) {
+        const auto& in = graph_.nodes()[static_cast<size_t>(member)].inputs[k];
         if (!in.from.valid()) continue;
         if (!in.delayed) {
           pending += s.done[static_cast<size_t>(in.from.node)] == 0 ? 1 : 0;
@@ -232,27 +274,25 @@ class Executor::Impl {
     const auto i = static_cast<size_t>(t.node);
     CompiledNode& node = graph_.nodes()[i];
     std::exception_ptr err;
+    FusedStep* fused = fused_[i].get();
     try {
+      // Inputs fed from inside a fused group are not whole images: they stay null here.
       std::vector<const Value*> inputs(node.inputs.size(), nullptr);
       for (size_t k = 0; k < node.inputs.size(); ++k) {
-        const auto& in = node.inputs[k];
-        if (!in.from.valid()) continue;
-        if (!in.delayed) {
-          inputs[k] = &s.values[static_cast<size_t>(in.from.node)][static_cast<size_t>(in.from.port)];
-        } else if (t.seq == 0) {
-          inputs[k] =
-              in.initial_from.valid()
-                  ? &s.values[static_cast<size_t>(in.initial_from.node)][static_cast<size_t>(in.initial_from.port)]
-                  : &initial_values_[i][k];
-        } else {
-          inputs[k] = &slot(t.seq - 1).values[static_cast<size_t>(in.from.node)][static_cast<size_t>(in.from.port)];
-        }
+        if (fused == nullptr || !fused->internal(t.node, k)) inputs[k] = input_value(t.seq, i, k);
       }
       std::vector<Value*> outputs;
       for (auto& v : s.values[i]) outputs.push_back(&v);
       NodeIO io(inputs, outputs, node.impl->outputs(), size_);
       node.impl->begin_frame(io);
-      if (node.impl->footprint() != kernels::Footprint::frame) run_stripes(*node.impl, io);
+      if (fused != nullptr) {
+        const auto external = [&](size_t pos, size_t k) -> const cv::Mat& {
+          return std::get<cv::Mat>(*input_value(t.seq, static_cast<size_t>(fused->members()[pos]), k));
+        };
+        fused->run(graph_, external, io.out_image(0), threads_ > 1);
+      } else if (node.impl->footprint() != kernels::Footprint::frame) {
+        run_stripes(*node.impl, io);
+      }
     } catch (const std::exception& e) {
       err = std::make_exception_ptr(NodeError("frame " + std::to_string(s.index) + ", node '" + node.name + "' (" +
                                               node.kernel + "): " + e.what()));
@@ -276,6 +316,19 @@ class Executor::Impl {
     const std::lock_guard lk(m_);
     --running_;
     cv_.notify_all();
+  }
+
+  // What input k of node i reads on frame seq: its producer's value on this frame, or for a delayed
+  // input the previous frame's (the initial value on the first frame). Null if unconnected.
+  const Value* input_value(std::int64_t seq, size_t i, size_t k) {
+    const auto& in = graph_.nodes()[i].inputs[k];
+    if (!in.from.valid()) return nullptr;
+    const auto at = [](Slot& s, PortAddress a) {
+      return &s.values[static_cast<size_t>(a.node)][static_cast<size_t>(a.port)];
+    };
+    if (!in.delayed) return at(slot(seq), in.from);
+    if (seq > 0) return at(slot(seq - 1), in.from);
+    return in.initial_from.valid() ? at(slot(seq), in.initial_from) : &initial_values_[i][k];
   }
 
   void run_stripes(Node& node, NodeIO& io) const {
@@ -369,6 +422,7 @@ class Executor::Impl {
   int threads_;
   int frames_in_flight_;
   int min_stripe_rows_;
+  int fused_stripe_rows_;
   ResultHandler on_result_;
   tbb::global_control control_;
   tbb::task_arena arena_;
@@ -377,7 +431,12 @@ class Executor::Impl {
   std::vector<std::vector<int>> consumers_next_;    // per producer: consumer of each delayed edge
   std::vector<std::vector<int>> consumers_first_;   // per producer: consumer of each initial-value edge
   std::vector<std::vector<Value>> initial_values_;  // [node][input]: constant first-frame values
-  std::vector<bool> in_order_;                      // per node: waits for its own previous frame
+  std::vector<bool> in_order_;                      // per step: waits for its own previous frame
+  std::vector<bool> absorbed_;                      // per node: runs inside a fused group's step
+  std::vector<std::unique_ptr<FusedStep>> fused_;   // per node: the group it is the sink of, if any
+  // Per step (indexed by its node, or its group's sink): the (member node, input) pairs fed from
+  // outside the step.
+  std::vector<std::vector<std::pair<int, size_t>>> step_inputs_;
   cv::Size size_;
   bool configured_ = false;
 

@@ -19,9 +19,11 @@
 namespace neopipe::pipeline {
 
 struct ExecutorOptions {
-  int threads = 0;           ///< worker threads; 0 = one per hardware thread
-  int frames_in_flight = 0;  ///< frames being processed at once (>= 2); 0 = threads + 2
-  int min_stripe_rows = 16;  ///< stripes are never shorter than this
+  int threads = 0;            ///< worker threads; 0 = one per hardware thread
+  int frames_in_flight = 0;   ///< frames being processed at once (>= 2); 0 = threads + 2
+  int min_stripe_rows = 16;   ///< stripes are never shorter than this
+  bool fuse = true;           ///< run chains of point and 3x3 nodes as fused steps (see fusion.hpp)
+  int fused_stripe_rows = 0;  ///< rows per stripe of a fused step; 0 = sized to the cache
 };
 
 struct FrameResult {

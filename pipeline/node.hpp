@@ -3,6 +3,7 @@
 // in kernels/; a node only binds ports and parameters to it and says how it may be cut up (its
 // footprint). The scheduler decides the rest: which stripes, on which threads, which frames at once.
 
+#include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <span>
 #include <string>
@@ -62,6 +63,20 @@ class NodeIO {
   cv::Size size_;
 };
 
+/// Rows of a node's inputs by frame row index, for computing one output row at a time. They may
+/// come from whole-frame images or, when the scheduler fuses nodes, from small stripe buffers that
+/// hold only the rows the consumer needs.
+class RowInputs {
+ public:
+  virtual ~RowInputs() = default;
+  /// Row y (0 <= y < frame height) of input `input`, as raw bytes of the port's pixel type.
+  virtual const std::uint8_t* row(size_t input, int y) const = 0;
+  template <class T>
+  const T* row_as(size_t input, int y) const {
+    return reinterpret_cast<const T*>(row(input, y));  // NOLINT(cppcoreguidelines-pro-type-reinterpret-cast)
+  }
+};
+
 /// Whether the scheduler may run a node on several frames at once.
 ///  - in_order: one frame at a time, in frame order, like a PIPE stage. Needed by a node that keeps
 ///    per-frame state in itself (set in begin_frame, read in run_rows) or across frames.
@@ -95,11 +110,20 @@ class Node {
   virtual void begin_frame(NodeIO& io);
 
   /// Computes output rows [rows.start, rows.end). The scheduler calls it for stripes that cover the
-  /// frame, possibly at once on several threads: write only these rows.
-  virtual void run_rows(NodeIO& io, cv::Range rows) const {
-    (void)io;
-    (void)rows;
-  }
+  /// frame, possibly at once on several threads: write only these rows. The default computes them
+  /// one by one with compute_row, reading the inputs' whole-frame images.
+  virtual void run_rows(NodeIO& io, cv::Range rows) const;
+
+  /// The row form of a point or 3x3 node: writes output row y (`width` pixels) into `out`, reading
+  /// rows y - halo .. y + halo of its inputs through `in`. The node applies its own vertical border,
+  /// so it never asks for a row outside the frame. Nodes with a frame footprint have no row form.
+  virtual void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const;
+
+  /// True when compute_row needs nothing that begin_frame prepares from whole input frames (Otsu's
+  /// threshold needs its input's histogram first). The scheduler may then fuse the node with its
+  /// producer and consumer: run the chain stripe by stripe through small buffers, so intermediate
+  /// images never exist whole and stay in cache; begin_frame is then not called for absorbed nodes.
+  virtual bool fusable() const { return false; }
 
  private:
   std::vector<PortDecl> inputs_;

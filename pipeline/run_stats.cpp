@@ -7,16 +7,6 @@
 
 namespace neopipe::pipeline {
 
-double RunStats::latency_quantile(double q) const {
-  if (latencies_s.empty()) return 0;
-  std::vector<double> v = latencies_s;
-  const auto rank = static_cast<size_t>(
-                        std::clamp(std::ceil(q * static_cast<double>(v.size())), 1.0, static_cast<double>(v.size()))) -
-                    1;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(rank), v.end());
-  return v[rank];
-}
-
 std::string RunStats::summary() const {
   std::string s =
       fmt::format("{} frames, {} dropped, {} blobs in {:.3f} s ({:.1f} frames/s); latency p50 {:.2f} ms, p99 {:.2f} ms",

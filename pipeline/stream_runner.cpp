@@ -55,7 +55,7 @@ void run_stream(io::FrameSource& source, CompiledGraph graph, const StreamOption
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   Executor ex(std::move(graph), options.executor, [&](FrameResult&& r) {
     ++stats.frames_processed;
-    stats.latencies_s.push_back(r.latency_s);
+    stats.latency.add(r.latency_s);
     if (blob_output) stats.blobs += static_cast<std::int64_t>(std::get<BlobList>(r.outputs[*blob_output]).size());
     sink(r);
     stats.seconds = elapsed();

@@ -11,7 +11,7 @@ namespace {
 // The frame being processed. The scheduler sets its value; it computes nothing.
 class SourceNode final : public Node {
  public:
-  explicit SourceNode(PortType format) : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any) {}
+  explicit SourceNode(PortType format) : Node({}, {{"out", format}}, kernels::Footprint::frame, FrameOrder::any) {}
   void begin_frame(NodeIO&) override {}
 };
 
@@ -19,7 +19,7 @@ class SourceNode final : public Node {
 class ImageNode final : public Node {
  public:
   ImageNode(cv::Mat image, PortType format, std::string path)
-      : Node({}, {{"out", format}}, kernels::Footprint::point, FrameOrder::any),
+      : Node({}, {{"out", format}}, kernels::Footprint::frame, FrameOrder::any),
         image_(std::move(image)),
         path_(std::move(path)) {}
 

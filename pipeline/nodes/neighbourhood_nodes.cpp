@@ -6,6 +6,7 @@
 #include "kernels/bool3x3.hpp"
 #include "kernels/conv3x3.hpp"
 #include "pipeline/expr.hpp"
+#include "pipeline/nodes/neighbour_rows.hpp"
 #include "pipeline/nodes/nodes.hpp"
 
 namespace neopipe::pipeline::nodes {
@@ -16,24 +17,44 @@ using kernels::Footprint;
 class Conv3x3Node final : public Node {
  public:
   Conv3x3Node(kernels::Conv3x3 k, PortType out)
-      : Node({{"in", PortType::gray8}}, {{"out", out}}, Footprint::neighbourhood3x3, FrameOrder::any), k_(k) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::conv3x3(io.image(0), io.out_image(0), k_, cv_type(outputs()[0].type), rows);
+      : Node({{"in", PortType::gray8}}, {{"out", out}}, Footprint::neighbourhood3x3, FrameOrder::any),
+        k_(k),
+        s16_(out == PortType::s16),
+        vertical_(k.border, static_cast<std::uint8_t>(k.border.value)) {}
+  void configure(cv::Size frame_size) override { vertical_.configure(frame_size); }
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    const Neighbours r = vertical_.rows(in, 0, y);
+    if (s16_) {
+      kernels::conv3x3_row(r.up, r.mid, r.down, reinterpret_cast<std::int16_t*>(out),  // NOLINT
+                           width, k_);
+    } else {
+      kernels::conv3x3_row(r.up, r.mid, r.down, out, width, k_);
+    }
   }
+  bool fusable() const override { return true; }
 
  private:
   kernels::Conv3x3 k_;
+  bool s16_;
+  VerticalBorder vertical_;
 };
 
 class Bool3x3Node final : public Node {
  public:
   explicit Bool3x3Node(kernels::Bool3x3 k)
       : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::neighbourhood3x3, FrameOrder::any),
-        k_(k) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::bool3x3(io.image(0), io.out_image(0), k_, rows); }
+        k_(k),
+        vertical_(k.border, k.border.value != 0 ? 255 : 0) {}
+  void configure(cv::Size frame_size) override { vertical_.configure(frame_size); }
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    const Neighbours r = vertical_.rows(in, 0, y);
+    kernels::bool3x3_row(r.up, r.mid, r.down, out, width, k_);
+  }
+  bool fusable() const override { return true; }
 
  private:
   kernels::Bool3x3 k_;
+  VerticalBorder vertical_;
 };
 
 kernels::Border border_params(ParamReader& p, int max_value) {

@@ -1,5 +1,6 @@
 // Point nodes: each output pixel depends only on the input pixels at the same place.
 
+#include <algorithm>
 #include <cstdint>
 
 #include "kernels/alu.hpp"
@@ -20,14 +21,20 @@ using kernels::Footprint;
 class GrayNode final : public Node {
  public:
   GrayNode() : Node({{"in", PortType::bgr8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::bgr_to_gray(io.image(0), io.out_image(0), rows); }
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    kernels::bgr_to_gray_row(in.row(0, y), out, width);
+  }
+  bool fusable() const override { return true; }
 };
 
 class LutNode final : public Node {
  public:
   explicit LutNode(const kernels::Lut& table)
       : Node({{"in", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any), table_(table) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override { kernels::lut(io.image(0), io.out_image(0), table_, rows); }
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    kernels::lut_row(in.row(0, y), out, width, table_);
+  }
+  bool fusable() const override { return true; }
 
  private:
   kernels::Lut table_;
@@ -47,9 +54,14 @@ class ThresholdNode final : public Node {
     Node::begin_frame(io);
     if (otsu_) t_ = kernels::otsu_threshold(kernels::histogram(io.image(0)));
   }
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::threshold(io.image(0), io.out_image(0), t_, high_, rows);
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    if (t_ < 0) {
+      std::fill_n(out, width, high_);
+    } else {
+      kernels::threshold_row(in.row(0, y), out, width, static_cast<std::uint8_t>(t_), high_);
+    }
   }
+  bool fusable() const override { return !otsu_; }
 
  private:
   int t_;
@@ -63,9 +75,10 @@ class AluNode final : public Node {
       : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
              FrameOrder::any),
         op_(op) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::alu(op_, io.image(0), io.image(1), io.out_image(0), rows);
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    kernels::alu_row(op_, in.row(0, y), in.row(1, y), out, width);
   }
+  bool fusable() const override { return true; }
 
  private:
   kernels::AluOp op_;
@@ -77,9 +90,10 @@ class Lut2Node final : public Node {
       : Node({{"a", PortType::gray8}, {"b", PortType::gray8}}, {{"out", PortType::gray8}}, Footprint::point,
              FrameOrder::any),
         table_(std::move(table)) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::lut2(io.image(0), io.image(1), io.out_image(0), table_, rows);
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    kernels::lut2_row(in.row(0, y), in.row(1, y), out, width, table_);
   }
+  bool fusable() const override { return true; }
 
  private:
   kernels::Lut2 table_;
@@ -89,9 +103,10 @@ class ConvertNode final : public Node {
  public:
   explicit ConvertNode(kernels::ConvertS16 c)
       : Node({{"in", PortType::s16}}, {{"out", PortType::gray8}}, Footprint::point, FrameOrder::any), c_(c) {}
-  void run_rows(NodeIO& io, cv::Range rows) const override {
-    kernels::convert_s16(io.image(0), io.out_image(0), c_, rows);
+  void compute_row(const RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    kernels::convert_s16_row(in.row_as<std::int16_t>(0, y), out, width, c_);
   }
+  bool fusable() const override { return true; }
 
  private:
   kernels::ConvertS16 c_;

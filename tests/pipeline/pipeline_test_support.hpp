@@ -7,8 +7,12 @@
 
 #include <filesystem>
 #include <initializer_list>
+#include <opencv2/core.hpp>
 #include <string>
 
+#include "pipeline/compiled_graph.hpp"
+#include "pipeline/graph_spec.hpp"
+#include "pipeline/kernel_registry.hpp"
 #include "pipeline/value.hpp"
 
 namespace neopipe::pipeline::testing {
@@ -59,6 +63,31 @@ inline void expect_same_blobs(const BlobList& a, const BlobList& b, const std::s
     EXPECT_EQ(a[i].mu11, b[i].mu11);
     EXPECT_EQ(a[i].mu02, b[i].mu02);
   }
+}
+
+/// Same size, type and pixels.
+inline bool same_image(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && (a.empty() || cv::norm(a, b, cv::NORM_INF) == 0);
+}
+
+/// Port values equal: images pixel for pixel, histograms count for count, blob tables field by field.
+inline void expect_same_value(const Value& a, const Value& b, const std::string& what) {
+  ASSERT_EQ(a.index(), b.index()) << what;
+  if (const auto* ma = std::get_if<cv::Mat>(&a)) {
+    EXPECT_TRUE(same_image(*ma, std::get<cv::Mat>(b))) << what;
+  } else if (const auto* ha = std::get_if<Histogram>(&a)) {
+    EXPECT_TRUE(*ha == std::get<Histogram>(b)) << what;
+  } else if (const auto* ba = std::get_if<BlobList>(&a)) {
+    expect_same_blobs(*ba, std::get<BlobList>(b), what);
+  }
+}
+
+inline CompiledGraph compile_yaml(const std::string& yaml, const KernelRegistry& registry = standard_kernels()) {
+  return compile(parse_graph_spec(yaml, "spec.yaml"), registry);
+}
+
+inline CompiledGraph compile_example(const std::string& file) {
+  return compile(load_graph_spec(std::string(NEOPIPE_EXAMPLES_DIR) + "/" + file), standard_kernels());
 }
 
 }  // namespace neopipe::pipeline::testing

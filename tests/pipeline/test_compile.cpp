@@ -62,10 +62,6 @@ pl::KernelRegistry registry_with_split() {
   return r;
 }
 
-pl::CompiledGraph compile_yaml(const std::string& yaml, const pl::KernelRegistry& registry = pl::standard_kernels()) {
-  return pl::compile(pl::parse_graph_spec(yaml, kOrigin), registry);
-}
-
 // Compiles `yaml`, which must fail with a GraphError; returns its what().
 std::string compile_error(const std::string& yaml, const pl::KernelRegistry& registry = pl::standard_kernels()) {
   try {

@@ -123,21 +123,6 @@ std::vector<cv::Mat> numbered_frames(int count, cv::Size size = {8, 6}) {
 // ---------------------------------------------------------------------------------------------
 // Comparisons
 
-bool same_image(const cv::Mat& a, const cv::Mat& b) {
-  return a.size() == b.size() && a.type() == b.type() && (a.empty() || cv::norm(a, b, cv::NORM_INF) == 0);
-}
-
-void expect_same_value(const pl::Value& a, const pl::Value& b, const std::string& what) {
-  ASSERT_EQ(a.index(), b.index()) << what;
-  if (const auto* ma = std::get_if<cv::Mat>(&a)) {
-    EXPECT_TRUE(same_image(*ma, std::get<cv::Mat>(b))) << what;
-  } else if (const auto* ha = std::get_if<pl::Histogram>(&a)) {
-    EXPECT_TRUE(*ha == std::get<pl::Histogram>(b)) << what;
-  } else if (const auto* ba = std::get_if<pl::BlobList>(&a)) {
-    expect_same_blobs(*ba, std::get<pl::BlobList>(b), what);
-  }
-}
-
 // A deep copy of a result's outputs, for checking later that they did not change.
 std::vector<pl::Value> deep_copy(const std::vector<pl::Value>& values) {
   std::vector<pl::Value> out;
@@ -157,14 +142,6 @@ const cv::Mat& image_output(const pl::FrameResult& r, size_t k) {
 
 // ---------------------------------------------------------------------------------------------
 // Graphs
-
-pl::CompiledGraph compile_yaml(const std::string& yaml, const pl::KernelRegistry& registry = pl::standard_kernels()) {
-  return pl::compile(pl::parse_graph_spec(yaml, "spec.yaml"), registry);
-}
-
-pl::CompiledGraph compile_example(const std::string& file) {
-  return pl::compile(pl::load_graph_spec(std::string(NEOPIPE_EXAMPLES_DIR) + "/" + file), pl::standard_kernels());
-}
 
 // Running average out[t] = floor((src[t] + 3 out[t-1]) / 4), out[-1] = `initial`.
 std::string running_average_yaml(const std::string& initial) {

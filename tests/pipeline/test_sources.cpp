@@ -86,10 +86,6 @@ std::string source_error(const std::vector<std::string>& inputs, io::ColorFormat
   return {};
 }
 
-bool same_image(const cv::Mat& a, const cv::Mat& b) {
-  return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
-}
-
 cv::Mat gray_of(const cv::Mat& bgr) {
   cv::Mat g;
   cv::cvtColor(bgr, g, cv::COLOR_BGR2GRAY);
