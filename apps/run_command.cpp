@@ -31,7 +31,13 @@ extern "C" void on_interrupt(int /*signal*/) {
   g_stop_requested.store(true);
 }
 
-pl::GraphSpec graph_for(const RunArgs& a) {
+void list_kernels() {
+  for (const auto* k : pl::standard_kernels().all()) fmt::print("{:<10} {}\n", k->name, k->summary);
+}
+
+}  // namespace
+
+pl::GraphSpec run_graph(const RunArgs& a) {
   if (!a.graph.empty()) {
     if (!a.threshold.empty() || a.connectivity != 0) {
       throw UsageError{"--threshold and --connectivity configure the built-in blob graph; with --graph, set them in " +
@@ -45,11 +51,9 @@ pl::GraphSpec graph_for(const RunArgs& a) {
   return pl::blob_graph(o);
 }
 
-void list_kernels() {
-  for (const auto* k : pl::standard_kernels().all()) fmt::print("{:<10} {}\n", k->name, k->summary);
+io::ColorFormat run_source_format(const pl::CompiledGraph& graph) {
+  return graph.source_type() == pl::PortType::bgr8 ? io::ColorFormat::bgr : io::ColorFormat::gray;
 }
-
-}  // namespace
 
 CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
   CLI::App* cmd = parent.add_subcommand("run", "Process a video or images through a graph; write the blob table");
@@ -95,14 +99,13 @@ int run_command(const RunArgs& a) {
   }
   if (a.inputs.empty()) throw UsageError{"no INPUT given (a video file, image files or a directory of images)"};
 
-  pl::CompiledGraph graph = pl::compile(graph_for(a), pl::standard_kernels());
+  pl::CompiledGraph graph = pl::compile(run_graph(a), pl::standard_kernels());
   const auto blob_output = graph.find_output(pl::PortType::blobs);
   if (!blob_output) {
     throw pl::GraphError({graph.origin(), 0, 0},
                          "the graph has no output of type blobs, so there is no blob table to write");
   }
-  const auto format = graph.source_type() == pl::PortType::bgr8 ? io::ColorFormat::bgr : io::ColorFormat::gray;
-  const auto source = io::open_frame_source(a.inputs, format);
+  const auto source = io::open_frame_source(a.inputs, run_source_format(graph));
 
   io::TableOptions table;
   table.moments = a.moments;

@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/compiled_graph.hpp"
+#include "pipeline/graph_spec.hpp"
+#include "pipeline/io/frame_source.hpp"
+
 namespace neopipe::apps {
 
 struct RunArgs {
@@ -28,5 +32,12 @@ struct RunArgs {
 CLI::App* add_run_command(CLI::App& parent, RunArgs& args);
 /// Runs it; returns the process exit code.
 int run_command(const RunArgs& args);
+
+/// The graph `neopipe run` runs for `args`: --graph's spec, else the built-in blob graph as
+/// --threshold and --connectivity configure it. `neopipe bench --video` runs it with RunArgs{}.
+/// Throws UsageError for --threshold or --connectivity together with --graph.
+pipeline::GraphSpec run_graph(const RunArgs& args);
+/// The pixel format `neopipe run` reads frames in for `graph`: BGR for a bgr8 source, else gray.
+pipeline::io::ColorFormat run_source_format(const pipeline::CompiledGraph& graph);
 
 }  // namespace neopipe::apps

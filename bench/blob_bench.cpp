@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
+#include "bench/memory.hpp"
 #include "bench/peers.hpp"
 #include "bench/synthetic.hpp"
 #include "pipeline/builtin_graphs.hpp"
@@ -26,18 +27,36 @@ Frames make_frames(const BenchCase& c, int n) {
   Frames f;
   for (int i = 0; i < n; ++i) {
     const auto seed = 1000 * static_cast<std::uint64_t>(i) + 17;
-    f.images.push_back(c.name == "dots" ? make_dots_frame(c.size, 100, seed) : make_dense_frame(c.size, seed));
+    f.images.push_back(uses_dots_frames(c.name) ? make_dots_frame(c.size, c.blobs, seed, c.radius)
+                                                : make_dense_frame(c.size, seed));
   }
-  f.threshold = c.name == "dots" ? dots_threshold : dense_threshold(f.images.front());
+  f.threshold = uses_dots_frames(c.name) ? dots_threshold : dense_threshold(f.images.front());
   return f;
 }
 
-pipeline::CompiledGraph blob_graph(int threshold) {
+// The graph neopipe runs for the case; its output 0 is the blob table.
+pipeline::CompiledGraph case_graph(const std::string& name, int threshold) {
+  if (name == "chain") return pipeline::compile(chain_graph(threshold), pipeline::standard_kernels());
   pipeline::BlobGraphOptions o;
   o.threshold = threshold;
   o.source = pipeline::PortType::gray8;
   return pipeline::compile(pipeline::blob_graph(o), pipeline::standard_kernels());
 }
+
+// The case the OpenCV way: the number of blobs and their summed area.
+class OpenCvCase {
+ public:
+  explicit OpenCvCase(const std::string& name) : is_chain_(name == "chain") {}
+  int operator()(const cv::Mat& gray, int threshold) {
+    return is_chain_ ? chain_(gray, threshold) : blobs_(gray, threshold);
+  }
+  std::int64_t total_area() const { return is_chain_ ? chain_.total_area() : blobs_.total_area(); }
+
+ private:
+  bool is_chain_;
+  OpenCvBlobs blobs_;
+  OpenCvChain chain_;
+};
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -57,11 +76,11 @@ double time_loop(F&& one, double min_seconds) {
   return static_cast<double>(n) / s;
 }
 
-double time_neopipe(const Frames& f, int threads, double min_seconds) {
+double time_neopipe(const std::string& name, const Frames& f, int threads, double min_seconds) {
   std::int64_t blobs = 0;
   pipeline::ExecutorOptions eo;
   eo.threads = threads;
-  pipeline::Executor ex(blob_graph(f.threshold), eo, [&](pipeline::FrameResult&& r) {
+  pipeline::Executor ex(case_graph(name, f.threshold), eo, [&](pipeline::FrameResult&& r) {
     blobs += static_cast<std::int64_t>(std::get<pipeline::BlobList>(r.outputs[0]).size());
   });
   const auto n_frames = static_cast<std::int64_t>(f.images.size());
@@ -82,7 +101,40 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// Runs `timed` (which returns frames/s); on the first repeat also notes how far the resident set
+// grew while it ran.
+template <class F>
+double timed_with_memory(F&& timed, bool first, std::optional<double>& growth_mib) {
+  if (!first) return timed();
+  const PeakGrowth peak;
+  const double fps = timed();
+  if (const auto g = peak.growth()) growth_mib = static_cast<double>(*g) / (1024.0 * 1024.0);
+  return fps;
+}
+
 }  // namespace
+
+bool uses_dots_frames(const std::string& case_name) {
+  return case_name == "dots" || case_name == "chain";
+}
+
+pipeline::GraphSpec chain_graph(int threshold) {
+  pipeline::GraphBuilder b("<bench chain graph>");
+  b.node("src", "source", "{format: gray}")
+      .node("smooth", "conv3x3", "{preset: smooth}")
+      .node("binary", "threshold", "{value: " + std::to_string(threshold) + "}")
+      .node("eroded", "bool3x3", "{op: erode}")
+      .node("opened", "bool3x3", "{op: dilate}")
+      .node("blobs", "blobs", "{threshold: 0, connectivity: 8}")
+      .connect("src", "smooth.in")
+      .connect("smooth", "binary.in")
+      .connect("binary", "eroded.in")
+      .connect("eroded", "opened.in")
+      .connect("opened", "blobs.in")
+      .connect("src", "blobs.weights")
+      .output("blobs");
+  return b.spec();
+}
 
 std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& o) {
   const Frames f = make_frames(c, std::max(o.distinct_frames, 1));
@@ -92,34 +144,51 @@ std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& 
   std::vector<double> np;
   std::vector<double> cvv;
   std::vector<double> fl;
+  std::optional<double> np_mem;
+  std::optional<double> cv_mem;
+  std::optional<double> fl_mem;
   const int saved_cv_threads = cv::getNumThreads();
   cv::setNumThreads(c.threads);
-  OpenCvBlobs opencv;
+  OpenCvCase opencv(c.name);
   ReadFloor floor(c.threads);
   // Interleave the implementations so a slow spell of the machine hits all of them alike.
   for (int r = 0; r < std::max(o.repeats, 1); ++r) {
-    np.push_back(time_neopipe(f, c.threads, o.min_seconds));
-    cvv.push_back(time_loop([&](int i) { opencv(frame(i), f.threshold); }, o.min_seconds));
-    fl.push_back(time_loop([&](int i) { floor(frame(i)); }, o.min_seconds));
+    const bool first = r == 0;
+    np.push_back(timed_with_memory([&] { return time_neopipe(c.name, f, c.threads, o.min_seconds); }, first, np_mem));
+    cvv.push_back(timed_with_memory(
+        [&] { return time_loop([&](int i) { opencv(frame(i), f.threshold); }, o.min_seconds); }, first, cv_mem));
+    fl.push_back(
+        timed_with_memory([&] { return time_loop([&](int i) { floor(frame(i)); }, o.min_seconds); }, first, fl_mem));
   }
   cv::setNumThreads(saved_cv_threads);
-  const double mpix = c.size.area() / 1e6;
+  const double pixels = c.size.area();
   std::vector<BenchRecord> out;
-  for (const auto& [impl, v] : {std::pair{"neopipe", &np}, std::pair{"opencv", &cvv}, std::pair{"floor", &fl}}) {
+  for (const auto& [impl, v, mem] :
+       {std::tuple{"neopipe", &np, np_mem}, std::tuple{"opencv", &cvv, cv_mem}, std::tuple{"floor", &fl, fl_mem}}) {
     const double fps = median(*v);
-    out.push_back({c.name, impl, c.size.width, c.size.height, c.threads, fps, fps * mpix});
+    out.push_back(
+        {c.name, impl, c.size.width, c.size.height, c.threads, fps, fps * pixels / 1e6, 1e9 / (fps * pixels), mem});
   }
   return out;
 }
 
-std::string cross_check(const BenchCase& c) {
+CrossCheck cross_check(const BenchCase& c) {
   const Frames f = make_frames(c, 1);
-  const auto results = pipeline::run_frames(blob_graph(f.threshold), {f.images.front()}, {});
-  const auto ours = std::get<pipeline::BlobList>(results.front().outputs[0]).size();
-  OpenCvBlobs opencv;
-  const auto theirs = static_cast<size_t>(opencv(f.images.front(), f.threshold));
-  if (ours == theirs) return {};
-  return c.name + ": neopipe found " + std::to_string(ours) + " blobs, OpenCV " + std::to_string(theirs);
+  const auto results = pipeline::run_frames(case_graph(c.name, f.threshold), {f.images.front()}, {});
+  const auto& ours = std::get<pipeline::BlobList>(results.front().outputs[0]);
+  std::int64_t our_area = 0;
+  for (const auto& b : ours) our_area += b.area;
+  OpenCvCase opencv(c.name);
+  const auto theirs = static_cast<std::int64_t>(opencv(f.images.front(), f.threshold));
+  const std::int64_t their_area = opencv.total_area();
+  CrossCheck check;
+  check.blobs = static_cast<std::int64_t>(ours.size());
+  if (check.blobs != theirs || our_area != their_area) {
+    check.mismatch = c.name + " " + std::to_string(c.size.width) + "x" + std::to_string(c.size.height) +
+                     ": neopipe found " + std::to_string(check.blobs) + " blobs (" + std::to_string(our_area) +
+                     " pixels), OpenCV " + std::to_string(theirs) + " (" + std::to_string(their_area) + " pixels)";
+  }
+  return check;
 }
 
 }  // namespace neopipe::bench

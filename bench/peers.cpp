@@ -14,6 +14,33 @@ int OpenCvBlobs::operator()(const cv::Mat& gray, int threshold) {
   return cv::connectedComponentsWithStats(binary_, labels_, stats_, centroids_, 8, CV_32S) - 1;
 }
 
+namespace {
+
+std::int64_t summed_areas(const cv::Mat& stats) {
+  std::int64_t total = 0;
+  for (int i = 1; i < stats.rows; ++i) total += stats.at<int>(i, cv::CC_STAT_AREA);  // row 0: background
+  return total;
+}
+
+}  // namespace
+
+std::int64_t OpenCvBlobs::total_area() const {
+  return summed_areas(stats_);
+}
+
+OpenCvChain::OpenCvChain() : kernel_(cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3))) {}
+
+int OpenCvChain::operator()(const cv::Mat& gray, int threshold) {
+  cv::GaussianBlur(gray, smooth_, cv::Size(3, 3), 0, 0, cv::BORDER_REPLICATE);
+  cv::threshold(smooth_, binary_, threshold, 255, cv::THRESH_BINARY);
+  cv::morphologyEx(binary_, opened_, cv::MORPH_OPEN, kernel_);
+  return cv::connectedComponentsWithStats(opened_, labels_, stats_, centroids_, 8, CV_32S) - 1;
+}
+
+std::int64_t OpenCvChain::total_area() const {
+  return summed_areas(stats_);
+}
+
 struct ReadFloor::Arena {
   explicit Arena(int n) : arena(n) {}
   tbb::task_arena arena;

@@ -13,9 +13,27 @@ namespace neopipe::bench {
 class OpenCvBlobs {
  public:
   int operator()(const cv::Mat& gray, int threshold);
+  /// The summed areas of the last call's components.
+  std::int64_t total_area() const;
 
  private:
   cv::Mat binary_, labels_, stats_, centroids_;
+};
+
+/// The chain case the OpenCV way: cv::GaussianBlur 3x3 (sigma 0: the kernel [1 2 1]/4 both ways,
+/// computed in exact fixed point and rounded half up for 8-bit images, which is neopipe's smooth
+/// preset bit for bit) with BORDER_REPLICATE (neopipe's default border), cv::threshold, a 3x3 opening
+/// (cv::morphologyEx MORPH_OPEN, rectangle), cv::connectedComponentsWithStats as OpenCvBlobs does.
+/// Returns the number of components, background excluded.
+class OpenCvChain {
+ public:
+  OpenCvChain();
+  int operator()(const cv::Mat& gray, int threshold);
+  /// The summed areas of the last call's components.
+  std::int64_t total_area() const;
+
+ private:
+  cv::Mat kernel_, smooth_, binary_, opened_, labels_, stats_, centroids_;
 };
 
 /// One pass summing the frame's pixels, cut into row stripes over `threads` threads.

@@ -14,7 +14,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 using D8 = hn::CappedTag<std::uint8_t, 64>;
 
 template <class M>
-std::uint64_t mask_bits(D8 d, M mask) {
+HWY_INLINE std::uint64_t mask_bits(D8 d, M mask) {
   std::uint8_t bytes[8] = {};  // StoreMaskBits may write up to 8 bytes
   hn::StoreMaskBits(d, mask, bytes);
   std::uint64_t bits = 0;
@@ -22,100 +22,107 @@ std::uint64_t mask_bits(D8 d, M mask) {
   return bits;
 }
 
-// Turns the foreground bits of consecutive chunks of a row into runs; a run may span chunks.
-class RunEmitter {
- public:
-  explicit RunEmitter(Run* out) : out_(out) {}
-
-  bool in_run() const { return in_run_; }
-
-  // Bit i of `fg` is pixel x + i; `valid` has a bit set for each pixel of the chunk, and fg has no
-  // bits outside it.
-  void chunk(std::uint64_t fg, std::uint64_t valid, int x) {
-    // Inside a run the next event is a background pixel, outside it a foreground one. Flipping the
-    // remaining bits after each event finds all of a chunk's edges with one count-trailing-zeros
-    // each, however many runs it holds.
-    std::uint64_t events = in_run_ ? ~fg & valid : fg;
-    while (events != 0) {
-      const int p = static_cast<int>(hwy::Num0BitsBelowLS1Bit_Nonzero64(events));
-      if (in_run_) {
-        out_[n_].xs = start_;
-        out_[n_].xe = x + p;
-        ++n_;
-      } else {
-        start_ = x + p;
-      }
-      in_run_ = !in_run_;
-      events = ~events & valid & (~std::uint64_t{0} << p);
+// Foreground bits of pixels [x, x + count) of a row of `width` pixels, bit i for pixel x + i;
+// count <= 64, and a word shorter than 64 ends the row. Reads only inside the row.
+HWY_INLINE std::uint64_t foreground_word(D8 d, const std::uint8_t* row, int width, int x, int count,
+                                         const hn::VFromD<D8>& t) {
+  const int n = static_cast<int>(hn::Lanes(d));
+  std::uint64_t bits = 0;
+  int k = 0;
+  for (; k + n <= count; k += n) bits |= mask_bits(d, hn::LoadU(d, row + x + k) > t) << k;
+  if (k < count) {
+    const int rem = count - k;
+    std::uint64_t tail = 0;
+    if (width >= n) {
+      // The row's last whole vector overlaps pixels already seen; their bits are shifted out.
+      tail = mask_bits(d, hn::LoadU(d, row + width - n) > t) >> (n - rem);
+    } else {
+      std::uint8_t padded[64] = {};
+      std::memcpy(padded, row + x + k, static_cast<size_t>(rem));
+      tail = mask_bits(d, hn::LoadU(d, padded) > t) & ((std::uint64_t{1} << rem) - 1);
     }
+    bits |= tail << k;
   }
-
-  int finish(int width) {
-    if (in_run_) {
-      out_[n_].xs = start_;
-      out_[n_].xe = width;
-      ++n_;
-    }
-    return n_;
-  }
-
- private:
-  Run* out_;
-  int n_ = 0;
-  int start_ = 0;
-  bool in_run_ = false;
-};
+  return bits;
+}
 
 }  // namespace
 
 int find_runs(const std::uint8_t* row, int width, std::uint8_t threshold, Run* out) noexcept {
+  // A row is read 64 pixels at a time into a word of foreground bits. A bit that differs from the
+  // one before it (the pixel to the left, across words too) starts or ends a run; a word without
+  // such an edge, which is most of a sparse frame, costs a compare per vector and no branch miss.
   const D8 d;
-  const int n = static_cast<int>(hn::Lanes(d));
-  const std::uint64_t full = n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1;
   const auto t = hn::Set(d, threshold);
-  RunEmitter runs(out);
-  int x = 0;
-  for (;;) {
-    // Most of a frame is background and most of a large blob's row is foreground: test four
-    // vectors at once (their max, or min, against T) and stop at the first block that changes.
-    if (runs.in_run()) {
-      while (x + 4 * n <= width) {
-        const auto lo = hn::Min(hn::Min(hn::LoadU(d, row + x), hn::LoadU(d, row + x + n)),
-                                hn::Min(hn::LoadU(d, row + x + 2 * n), hn::LoadU(d, row + x + 3 * n)));
-        if (!hn::AllTrue(d, lo > t)) break;
-        x += 4 * n;
+  const int n = static_cast<int>(hn::Lanes(d));
+  int count = 0;
+  int start = 0;
+  bool in_run = false;
+  const auto emit = [&](std::uint64_t edges, int x) {
+    while (edges != 0) {
+      const int p = x + static_cast<int>(hwy::Num0BitsBelowLS1Bit_Nonzero64(edges));
+      edges &= edges - 1;
+      if (in_run) {
+        out[count].xs = start;
+        out[count].xe = p;
+        ++count;
+      } else {
+        start = p;
       }
-    } else {
-      while (x + 4 * n <= width) {
-        const auto hi = hn::Max(hn::Max(hn::LoadU(d, row + x), hn::LoadU(d, row + x + n)),
-                                hn::Max(hn::LoadU(d, row + x + 2 * n), hn::LoadU(d, row + x + 3 * n)));
-        if (!hn::AllFalse(d, hi > t)) break;
-        x += 4 * n;
-      }
+      in_run = !in_run;
     }
-    if (x + n > width) break;
-    const std::uint64_t fg = mask_bits(d, hn::LoadU(d, row + x) > t);
-    if (fg != (runs.in_run() ? full : 0)) runs.chunk(fg, full, x);
-    x += n;
+  };
+  std::uint64_t left = 0;  // foreground bit of the pixel before the word
+  int x = 0;
+  for (; x + 64 <= width; x += 64) {
+    std::uint64_t fg = 0;
+    for (int k = 0; k < 64; k += n) fg |= mask_bits(d, hn::LoadU(d, row + x + k) > t) << k;
+    const std::uint64_t edges = fg ^ ((fg << 1) | left);
+    left = fg >> 63;
+    if (edges != 0) emit(edges, x);
   }
   if (x < width) {
-    const int rem = width - x;
-    std::uint64_t fg = 0;
-    if (width >= n) {
-      // The last full vector of the row overlaps pixels already seen; their bits are shifted out.
-      fg = mask_bits(d, hn::LoadU(d, row + width - n) > t) >> (n - rem);
-    } else {
-      std::uint8_t padded[64] = {};
-      std::memcpy(padded, row + x, static_cast<size_t>(rem));
-      fg = mask_bits(d, hn::LoadU(d, padded) > t);
-    }
-    const std::uint64_t valid = (std::uint64_t{1} << rem) - 1;
-    runs.chunk(fg & valid, valid, x);
+    const int len = width - x;
+    const std::uint64_t fg = foreground_word(d, row, width, x, len, t);
+    emit((fg ^ ((fg << 1) | left)) & ((std::uint64_t{1} << len) - 1), x);
   }
-  return runs.finish(width);
+  if (in_run) {
+    out[count].xs = start;
+    out[count].xe = width;
+    ++count;
+  }
+  return count;
 }
 
 namespace {
+
+#if HWY_TARGET != HWY_SCALAR
+// The sum over a vector's lanes i of w[i] * i, as int32 lanes to be summed by the caller.
+class OffsetWeigher {
+ public:
+  auto operator()(hn::VFromD<D8> v) const {
+    auto sum1 = hn::Zero(d32_);
+    auto sum0 = hn::ReorderWidenMulAccumulate(d32_, hn::BitCast(d16_, hn::ZipLower(du16_, v, zero_)), offset_lo_,
+                                              hn::Zero(d32_), sum1);
+    sum0 =
+        hn::ReorderWidenMulAccumulate(d32_, hn::BitCast(d16_, hn::ZipUpper(du16_, v, zero_)), offset_hi_, sum0, sum1);
+    return hn::RearrangeToOddPlusEven(sum0, sum1);
+  }
+
+ private:
+  D8 d8_;
+  hn::Repartition<std::uint16_t, D8> du16_;
+  hn::Repartition<std::int16_t, D8> d16_;
+  hn::Repartition<std::int32_t, D8> d32_;
+  hn::VFromD<D8> zero_ = hn::Zero(d8_);
+  // Each lane's offset, widened exactly as the weights are, so that the pairs line up whatever
+  // order ZipLower/ZipUpper give the lanes on this target. madd (int16 pairs -> int32) is exact
+  // since w * offset < 2^15.
+  hn::VFromD<D8> iota_ = hn::Iota(d8_, 0);
+  hn::VFromD<hn::Repartition<std::int16_t, D8>> offset_lo_ = hn::BitCast(d16_, hn::ZipLower(du16_, iota_, zero_));
+  hn::VFromD<hn::Repartition<std::int16_t, D8>> offset_hi_ = hn::BitCast(d16_, hn::ZipUpper(du16_, iota_, zero_));
+};
+#endif
 
 // Runs at least a vector long: whole vectors, widened and multiplied by their offsets.
 WeightSums weight_sums_long(const std::uint8_t* w, int xs, int xe) noexcept {
@@ -132,24 +139,9 @@ WeightSums weight_sums_long(const std::uint8_t* w, int xs, int xe) noexcept {
     return out;
   }
 #if HWY_TARGET != HWY_SCALAR
-  const hn::Repartition<std::uint16_t, D8> du16;
-  const hn::Repartition<std::int16_t, D8> d16;
-  const hn::Repartition<std::int32_t, D8> d32;
   const hn::Repartition<std::uint64_t, D8> d64;
-  const auto zero = hn::Zero(d8);
-  // Each lane's offset in its chunk, widened exactly as the weights are, so that the pairs line up
-  // whatever order ZipLower/ZipUpper give the lanes on this target.
-  const auto iota = hn::Iota(d8, 0);
-  const auto offset_lo = hn::BitCast(d16, hn::ZipLower(du16, iota, zero));
-  const auto offset_hi = hn::BitCast(d16, hn::ZipUpper(du16, iota, zero));
-  // sum of w * offset over one chunk; madd (int16 pairs -> int32) is exact since w * offset < 2^15.
-  const auto weighted_offsets = [&](decltype(zero) v) {
-    auto sum1 = hn::Zero(d32);
-    auto sum0 = hn::ReorderWidenMulAccumulate(d32, hn::BitCast(d16, hn::ZipLower(du16, v, zero)), offset_lo,
-                                              hn::Zero(d32), sum1);
-    sum0 = hn::ReorderWidenMulAccumulate(d32, hn::BitCast(d16, hn::ZipUpper(du16, v, zero)), offset_hi, sum0, sum1);
-    return hn::RearrangeToOddPlusEven(sum0, sum1);
-  };
+  const hn::Repartition<std::int32_t, D8> d32;
+  const OffsetWeigher weighted_offsets;
   // A block's int32 total stays below 2^31: 2048 chunks * 255 * (0 + 1 + ... + 63).
   constexpr int kBlockChunks = 2048;
   int i = 0;
@@ -198,6 +190,27 @@ WeightSums weight_sums(const std::uint8_t* row, int xs, int xe) noexcept {
     out.swx += std::int64_t{row[x]} * x;
   }
   return out;
+}
+
+WeightSums weight_sums(const std::uint8_t* row, int width, int xs, int xe) noexcept {
+#if HWY_TARGET != HWY_SCALAR
+  const D8 d8;
+  const int n = static_cast<int>(hn::Lanes(d8));
+  if (xe - xs <= n && width >= n) {
+    // One vector inside the row that covers the run, its other lanes zeroed: no loop whose exit
+    // the branch predictor would have to guess for every run.
+    const int base = std::min(xs, width - n);
+    const auto active =
+        hn::AndNot(hn::FirstN(d8, static_cast<size_t>(xs - base)), hn::FirstN(d8, static_cast<size_t>(xe - base)));
+    const auto v = hn::IfThenElseZero(active, hn::LoadU(d8, row + base));
+    const hn::Repartition<std::uint64_t, D8> d64;
+    const hn::Repartition<std::int32_t, D8> d32;
+    const auto sw = static_cast<std::int64_t>(hn::GetLane(hn::SumOfLanes(d64, hn::SumsOf8(v))));
+    const std::int64_t off = hn::GetLane(hn::SumOfLanes(d32, OffsetWeigher{}(v)));
+    return {sw, std::int64_t{base} * sw + off};
+  }
+#endif
+  return weight_sums(row, xs, xe);
 }
 
 }  // namespace neopipe::kernels::detail

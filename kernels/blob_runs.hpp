@@ -35,4 +35,8 @@ struct WeightSums {
 /// Sums over the run [xs, xe) of the row starting at `row`; reads only [xs, xe).
 WeightSums weight_sums(const std::uint8_t* row, int xs, int xe) noexcept;
 
+/// The same for a run of a row `width` pixels wide: reads only inside the row, but may read
+/// outside the run, which makes a short run one masked vector.
+WeightSums weight_sums(const std::uint8_t* row, int width, int xs, int xe) noexcept;
+
 }  // namespace neopipe::kernels::detail

@@ -135,7 +135,8 @@ void label_rows(const cv::Mat& src, const cv::Mat& weights, const BlobParams& pa
         label = forest.create();
       }
       run.label = label;
-      forest.moments(label).add_run(y, run.xs, run.xe, wrow);
+      const auto [sw, swx] = detail::weight_sums(wrow, width, run.xs, run.xe);
+      forest.moments(label).add_run(y, run.xs, run.xe, sw, swx);
     }
     on_row(y, static_cast<const Run*>(current), n);
     std::swap(above, current);
@@ -165,10 +166,14 @@ std::vector<Blob> to_blobs(const std::vector<BlobMoments>& components) {
 }  // namespace
 
 void BlobMoments::add_run(int y, int xs, int xe, const std::uint8_t* weights) noexcept {
+  const auto [run_sw, run_swx] = detail::weight_sums(weights, xs, xe);
+  add_run(y, xs, xe, run_sw, run_swx);
+}
+
+void BlobMoments::add_run(int y, int xs, int xe, std::int64_t run_sw, std::int64_t run_swx) noexcept {
   const std::int64_t n = xe - xs;
   const std::int64_t run_sx = sum_to(xe) - sum_to(xs);
   const std::int64_t yy = y;
-  const auto [run_sw, run_swx] = detail::weight_sums(weights, xs, xe);
   if (area == 0) {
     x0 = xs;
     y0 = y;

@@ -43,6 +43,8 @@ struct BlobMoments {
 
   /// Adds the run [xs, xe) of row y; `weights` points at row y of the weight image.
   void add_run(int y, int xs, int xe, const std::uint8_t* weights) noexcept;
+  /// The same with the run's weight sums already taken: sw = sum w, swx = sum w * x.
+  void add_run(int y, int xs, int xe, std::int64_t run_sw, std::int64_t run_swx) noexcept;
   void merge(const BlobMoments& other) noexcept;
 };
 

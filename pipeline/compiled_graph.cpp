@@ -6,6 +6,7 @@
 #include <set>
 
 #include "pipeline/nodes/nodes.hpp"
+#include "pipeline/threshold_folding.hpp"
 
 namespace neopipe::pipeline {
 namespace {
@@ -104,7 +105,7 @@ std::optional<size_t> CompiledGraph::find_output(PortType t) const {
   return std::nullopt;
 }
 
-CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
+CompiledGraph compile_as_declared(const GraphSpec& spec, const KernelRegistry& registry) {
   const SourceLocation graph_where{spec.origin, 0, 0};
   if (spec.nodes.empty()) throw GraphError(graph_where, "the graph has no nodes");
 
@@ -264,6 +265,14 @@ CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry) {
   }
   g.source_ = new_index[static_cast<size_t>(source)];
   for (const auto& o : outputs) g.outputs_.push_back(renumber(o));
+  return g;
+}
+
+CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry, const CompileOptions& options) {
+  // Validated as declared first, so that every message speaks of the graph the user wrote.
+  CompiledGraph g = compile_as_declared(spec, registry);
+  if (!options.fold_thresholds) return g;
+  if (auto folded = fold_thresholds_into_blobs(spec)) return compile_as_declared(*folded, registry);
   return g;
 }
 

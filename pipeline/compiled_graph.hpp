@@ -51,7 +51,7 @@ class CompiledGraph {
   std::optional<size_t> find_output(PortType t) const;
 
  private:
-  friend CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry);
+  friend CompiledGraph compile_as_declared(const GraphSpec& spec, const KernelRegistry& registry);
   std::string origin_;
   std::vector<CompiledNode> nodes_;
   int source_ = -1;
@@ -60,9 +60,18 @@ class CompiledGraph {
   bool has_delays_ = false;
 };
 
+struct CompileOptions {
+  /// Fold fixed thresholds into the blob nodes that alone read them (see threshold_folding.hpp):
+  /// same blob tables, one pass over the frame instead of three.
+  bool fold_thresholds = true;
+};
+
 /// Validates the spec and configures its nodes. Throws GraphError ("file:line:column: message") on
 /// an unknown kernel or parameter, a bad parameter value, an unknown node or port, a type mismatch,
 /// an unconnected input, an output that goes nowhere (dangling), or a cycle without a delay.
-CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry);
+CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry, const CompileOptions& options = {});
+
+/// compile() without the optimising passes: the nodes exactly as declared.
+CompiledGraph compile_as_declared(const GraphSpec& spec, const KernelRegistry& registry);
 
 }  // namespace neopipe::pipeline

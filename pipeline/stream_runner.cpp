@@ -1,48 +1,64 @@
 #include "pipeline/stream_runner.hpp"
 
-#include <algorithm>
 #include <chrono>
-#include <thread>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "pipeline/io/prefetching_source.hpp"
 
 namespace neopipe::pipeline {
 namespace {
 using Clock = std::chrono::steady_clock;
 
+// How long the driver waits for the reader before delivering finished results anyway.
+constexpr auto kPollInterval = std::chrono::milliseconds(2);
+
 bool stopped(const StreamOptions& o) {
   return o.stop != nullptr && o.stop->load();
 }
 
-void read_all(io::FrameSource& source, Executor& ex, const StreamOptions& o, RunStats& stats) {
-  while (!stopped(o)) {
-    auto f = source.next();
-    if (!f) return;
-    ++stats.frames_read;
-    ex.submit(f->index, f->image);
+// Real-time mode: frames the reader dropped from its full queue were read, and dropped.
+class ReaderDrops {
+ public:
+  void fold_into(const io::PrefetchingSource& reader, RunStats& stats) {
+    const std::int64_t now = reader.dropped();
+    stats.frames_read += now - seen_;
+    stats.frames_dropped += now - seen_;
+    seen_ = now;
+    stats.max_reader_lag_s = reader.max_lag_s();
   }
-  stats.interrupted = true;
-}
 
-void read_paced(io::FrameSource& source, Executor& ex, const StreamOptions& o, RunStats& stats) {
-  const double rate = o.fps > 0 ? o.fps : (source.fps() > 0 ? source.fps() : 30.0);
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
-  const auto start = Clock::now();
-  stats.realtime = true;
-  for (std::int64_t i = 0;; ++i) {
+ private:
+  std::int64_t seen_ = 0;
+};
+
+// Takes frames from the reader and submits them, delivering results while it waits, until the
+// stream ends or the stop flag is set. Batch mode blocks while the pipeline is full; real-time mode
+// drops a frame that finds it full.
+void drive(io::PrefetchingSource& reader, Executor& ex, const StreamOptions& o, RunStats& stats, ReaderDrops& drops) {
+  for (;;) {
     if (stopped(o)) {
       stats.interrupted = true;
       return;
     }
-    const auto due = start + i * period;
-    while (Clock::now() < due) {
+    std::optional<io::SourceFrame> f;
+    const bool ready = reader.next_within(kPollInterval, f);
+    if (o.realtime) drops.fold_into(reader, stats);
+    if (!ready) {
       ex.poll();
-      std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(2)));
+      continue;
     }
-    auto f = source.next();
-    if (!f) return;
+    if (!f) {
+      if (reader.interrupted()) stats.interrupted = true;
+      return;
+    }
     ++stats.frames_read;
-    stats.max_reader_lag_s =
-        std::max(stats.max_reader_lag_s, std::chrono::duration<double>(Clock::now() - due).count());
-    if (!ex.try_submit(f->index, f->image)) ++stats.frames_dropped;
+    if (!o.realtime) {
+      ex.submit(f->index, f->image);
+    } else if (!ex.try_submit(f->index, f->image)) {
+      ++stats.frames_dropped;
+    }
   }
 }
 
@@ -50,7 +66,17 @@ void read_paced(io::FrameSource& source, Executor& ex, const StreamOptions& o, R
 
 void run_stream(io::FrameSource& source, CompiledGraph graph, const StreamOptions& options,
                 const std::function<void(const FrameResult&)>& sink, RunStats& stats) {
+  if (options.read_ahead < 1) {
+    throw std::invalid_argument("run_stream: read_ahead must be at least 1, not " + std::to_string(options.read_ahead));
+  }
   const std::optional<size_t> blob_output = graph.find_output(PortType::blobs);
+  io::PrefetchOptions prefetch;
+  prefetch.capacity = options.realtime ? 1 : options.read_ahead;
+  prefetch.stop = options.stop;
+  if (options.realtime) {
+    prefetch.pace = options.fps > 0 ? options.fps : (source.fps() > 0 ? source.fps() : 30.0);
+    stats.realtime = true;
+  }
   const auto start = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   Executor ex(std::move(graph), options.executor, [&](FrameResult&& r) {
@@ -61,18 +87,28 @@ void run_stream(io::FrameSource& source, CompiledGraph graph, const StreamOption
     stats.seconds = elapsed();
     if (options.progress) options.progress(stats);
   });
+  std::optional<io::PrefetchingSource> reader;
+  ReaderDrops drops;
+  const auto stop_reader = [&] {
+    if (!reader) return;
+    reader->stop();
+    if (options.realtime) drops.fold_into(*reader, stats);
+  };
   try {
-    if (options.realtime) {
-      read_paced(source, ex, options, stats);
-    } else {
-      read_all(source, ex, options, stats);
-    }
+    reader.emplace(source, prefetch, start);
+    drive(*reader, ex, options, stats, drops);
+    stop_reader();  // frames it read ahead after a stop request are not processed
     ex.finish();
   } catch (...) {
-    // Deliver whatever finished before the error; the first error is the one to report.
+    stop_reader();
+    // Deliver whatever finished before the error. An error that comes up doing so belongs to an
+    // earlier frame than a reading error (or is the same processing or sink error), so it is the
+    // first error, the one to report.
     try {
       ex.finish();
     } catch (...) {
+      stats.seconds = elapsed();
+      throw;
     }
     stats.seconds = elapsed();
     throw;

@@ -11,7 +11,8 @@
 //   * bad input and bad command lines: a non-zero exit (2 for command-line errors), no signal, exactly
 //     one "error:" line naming the input and the cause, rows of already processed frames kept;
 //     graph spec errors reported as "path:line:col:";
-//   * --help texts, --list-kernels and `bench --json`.
+//   * --help texts, --list-kernels, and `bench`: the chain case, --sweep size and blobs, thread lists
+//     and --scaling, --video (decode-only and run rates; bad files as one-line errors), --json.
 // Every child runs under a timeout so that a hang fails the test instead of blocking the run.
 // Set NEOPIPE_CLI_KEEP_TMP=1 to keep the generated inputs and the outputs for a look afterwards.
 
@@ -1022,6 +1023,11 @@ TEST_F(Cli, BadFlagValuesAreUsageErrors) {
       {{"run", mkv.string(), "--format", "xml", "--out", csv}, {"--format", "xml"}},
       {{"bench", "--size", "64by64", "--json"}, {"--size", "64by64"}},
       {{"bench", "--case", "sparse", "--json"}, {"--case", "sparse"}},
+      {{"bench", "--threads", "0", "--json"}, {"--threads"}},
+      {{"bench", "--threads", "2", "--scaling", "--json"}, {"--scaling"}},
+      {{"bench", "--sweep", "pixels", "--json"}, {"--sweep", "pixels"}},
+      {{"bench", "--sweep", "blobs", "--case", "dense", "--json"}, {"--sweep blobs", "dense"}},
+      {{"bench", "--sweep", "blobs", "--size", "64x64", "--size", "80x80", "--json"}, {"--sweep blobs", "--size"}},
       {{}, {"subcommand"}},
   };
   for (const auto& c : cases) {
@@ -1050,7 +1056,9 @@ TEST_F(Cli, HelpTextsExitZeroAndMentionTheOptions) {
       {{"run", "--help"},
        {"--graph", "--threshold", "--connectivity", "--out", "--format", "--annotate", "--realtime", "--fps",
         "--threads", "--frames-in-flight", "--moments", "--quiet", "--list-kernels", kHeader}},
-      {{"bench", "--help"}, {"--size", "--threads", "--case", "--json", "--min-time", "--repeats"}},
+      {{"bench", "--help"},
+       {"--size", "--threads", "--scaling", "--case", "--sweep", "--video", "--json", "--min-time", "--repeats", "dots",
+        "dense", "chain", "floor", "vs opencv", "ns/px", "+MiB", "run/decode", "peak resident memory"}},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(describe(c.args));
@@ -1075,30 +1083,204 @@ TEST_F(Cli, ListKernelsNamesTheKernelsTheExamplesUse) {
   }
 }
 
-TEST_F(Cli, BenchJsonRecords) {
-  const RunResult r = run_neopipe({"bench", "--size", "64x64", "--threads", "1", "--case", "dots", "--min-time", "0.01",
-                                   "--repeats", "1", "--json"});
-  ASSERT_TRUE(succeeded(r));
+// `neopipe bench` with the quickest settings: one short timed run per measurement.
+RunResult run_bench(std::vector<std::string> args) {
+  args.insert(args.begin(), "bench");
+  for (const char* a : {"--min-time", "0.01", "--repeats", "1"}) args.emplace_back(a);
+  return run_neopipe(args);
+}
+
+/// Parses `bench --json` output; checks the object's metadata and returns its records.
+json bench_records(const RunResult& r) {
   json j;
-  ASSERT_NO_THROW(j = json::parse(r.out)) << r.out;
-  ASSERT_TRUE(j.is_array());
+  EXPECT_NO_THROW(j = json::parse(r.out)) << r.out;
+  EXPECT_TRUE(j.is_object()) << r.out;
+  if (!j.is_object()) return json::array();
+  for (const char* k : {"opencv_version", "hardware_threads", "repeats", "min_time_s", "peak_rss_mib", "notes"}) {
+    EXPECT_TRUE(j.contains(k)) << k << " missing";
+  }
+  EXPECT_EQ(j.value("repeats", 0), 1);
+  EXPECT_TRUE(j["notes"].is_array());
+  // Peak memory is a number on Linux, and no process of this kind fits in 1 MiB.
+  EXPECT_TRUE(j["peak_rss_mib"].is_number()) << j["peak_rss_mib"].dump();
+  if (j["peak_rss_mib"].is_number()) {
+    EXPECT_GT(j["peak_rss_mib"].get<double>(), 1.0);
+  }
+  EXPECT_TRUE(j["records"].is_array());
+  return j.value("records", json::array());
+}
+
+// The records of one implementation, in output order.
+std::vector<json> of_impl(const json& records, const std::string& impl) {
+  std::vector<json> out;
+  for (const auto& rec : records) {
+    if (rec["impl"] == impl) out.push_back(rec);
+  }
+  return out;
+}
+
+TEST_F(Cli, BenchJsonRecords) {
+  const RunResult r = run_bench({"--size", "64x64", "--threads", "1", "--case", "dots", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json records = bench_records(r);
   std::set<std::string> impls;
-  for (const auto& rec : j) {
-    for (const char* k : {"case", "impl", "width", "height", "threads", "fps", "mpix_s"}) {
+  for (const auto& rec : records) {
+    for (const char* k : {"case", "impl", "sweep", "width", "height", "blobs", "threads", "fps", "mpix_s",
+                          "ns_per_pixel", "rss_growth_mib"}) {
       ASSERT_TRUE(rec.contains(k)) << k << " missing in " << rec.dump();
     }
-    EXPECT_EQ(rec.size(), 7u) << rec.dump();
+    EXPECT_EQ(rec.size(), 11u) << rec.dump();
     EXPECT_EQ(rec["case"], "dots");
+    EXPECT_TRUE(rec["sweep"].is_null());
     EXPECT_EQ(rec["width"], 64);
     EXPECT_EQ(rec["height"], 64);
+    EXPECT_GT(rec["blobs"].get<int>(), 0);
     EXPECT_EQ(rec["threads"], 1);
     const double fps = rec["fps"].get<double>();
     EXPECT_GT(fps, 0);
     EXPECT_NEAR(rec["mpix_s"].get<double>(), fps * 64 * 64 / 1e6, 1e-9 * fps);
+    EXPECT_NEAR(rec["ns_per_pixel"].get<double>() * fps * 64 * 64, 1e9, 1e-3);
+    EXPECT_TRUE(rec["rss_growth_mib"].is_null() || rec["rss_growth_mib"].get<double>() >= 0) << rec.dump();
     impls.insert(rec["impl"].get<std::string>());
   }
   EXPECT_EQ(impls, (std::set<std::string>{"neopipe", "opencv", "floor"}));
-  EXPECT_EQ(j.size(), 3u);
+  EXPECT_EQ(records.size(), 3u);
+}
+
+TEST_F(Cli, BenchChainCaseRunsAndReports) {
+  const RunResult t = run_bench({"--case", "chain", "--size", "96x72", "--threads", "1"});
+  ASSERT_TRUE(succeeded(t));
+  bool header = false;
+  int rows = 0;
+  for (const auto& l : split_lines(t.out)) {
+    if (contains(l, "neopipe f/s") && contains(l, "vs opencv") && contains(l, "np ns/px")) header = true;
+    if (l.rfind("chain ", 0) == 0 && contains(l, "96x72")) ++rows;
+  }
+  EXPECT_TRUE(header) << t.out;
+  EXPECT_EQ(rows, 1) << t.out;
+  EXPECT_TRUE(contains(t.out, "peak resident memory")) << t.out;
+
+  const RunResult j = run_bench({"--case", "chain", "--size", "96x72", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(j));
+  const json records = bench_records(j);
+  ASSERT_EQ(records.size(), 3u) << j.out;
+  for (const auto& rec : records) {
+    EXPECT_EQ(rec["case"], "chain");
+    EXPECT_GT(rec["fps"].get<double>(), 0);
+    // The disks survive the opening: neopipe and OpenCV agreed on a non-zero count.
+    EXPECT_GT(rec["blobs"].get<int>(), 0);
+  }
+}
+
+TEST_F(Cli, BenchSweepSizeGivesOneRowPerSize) {
+  const RunResult r = run_bench({"--sweep", "size", "--size", "64x64", "96x72", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json records = bench_records(r);
+  std::vector<std::pair<int, int>> sizes;
+  for (const auto& rec : of_impl(records, "neopipe")) {
+    EXPECT_EQ(rec["sweep"], "size");
+    EXPECT_EQ(rec["case"], "dots");
+    EXPECT_GT(rec["ns_per_pixel"].get<double>(), 0);
+    sizes.emplace_back(rec["width"].get<int>(), rec["height"].get<int>());
+  }
+  EXPECT_EQ(sizes, (std::vector<std::pair<int, int>>{{64, 64}, {96, 72}}));
+  EXPECT_EQ(of_impl(records, "opencv").size(), 2u);
+}
+
+TEST_F(Cli, BenchSweepBlobsGrowsTheCountUntilTheFrameIsFull) {
+  const RunResult r = run_bench({"--sweep", "blobs", "--size", "160x120", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json j = json::parse(r.out);
+  const json records = bench_records(r);
+  std::vector<int> counts;
+  for (const auto& rec : of_impl(records, "neopipe")) {
+    EXPECT_EQ(rec["sweep"], "blobs");
+    EXPECT_EQ(rec["width"], 160);
+    EXPECT_EQ(rec["height"], 120);
+    counts.push_back(rec["blobs"].get<int>());
+  }
+  ASSERT_GE(counts.size(), 2u) << r.out;
+  EXPECT_EQ(counts[0], 10);
+  EXPECT_EQ(counts[1], 30);
+  EXPECT_TRUE(std::is_sorted(counts.begin(), counts.end())) << r.out;
+  // 10000 disks of radius 3 do not fit in 160x120: the sweep says where it stopped.
+  EXPECT_LT(counts.size(), 7u);
+  ASSERT_EQ(j["notes"].size(), 1u) << r.out;
+  EXPECT_TRUE(contains(j["notes"][0].get<std::string>(), "do not fit")) << j["notes"].dump();
+
+  const RunResult t = run_bench({"--sweep", "blobs", "--size", "160x120", "--threads", "1"});
+  ASSERT_TRUE(succeeded(t));
+  EXPECT_TRUE(contains(t.out, "sweep: blob count")) << t.out;
+  EXPECT_TRUE(contains(t.out, "note: ")) << t.out;
+}
+
+TEST_F(Cli, BenchThreadListMeasuresEachCountAndShowsScaling) {
+  const RunResult r = run_bench({"--case", "dots", "--size", "64x64", "--threads", "1,2", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  std::vector<int> threads;
+  for (const auto& rec : of_impl(bench_records(r), "neopipe")) threads.push_back(rec["threads"].get<int>());
+  EXPECT_EQ(threads, (std::vector<int>{1, 2}));
+
+  const RunResult t = run_bench({"--case", "dots", "--size", "64x64", "--threads", "1", "2"});
+  ASSERT_TRUE(succeeded(t));
+  EXPECT_TRUE(contains(t.out, "thread scaling")) << t.out;
+}
+
+TEST_F(Cli, BenchScalingRunsOneToAllHardwareThreads) {
+  const RunResult r = run_bench({"--case", "dots", "--size", "64x64", "--scaling", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json j = json::parse(r.out);
+  std::vector<int> threads;
+  for (const auto& rec : of_impl(bench_records(r), "neopipe")) threads.push_back(rec["threads"].get<int>());
+  ASSERT_FALSE(threads.empty());
+  EXPECT_EQ(threads.front(), 1);
+  EXPECT_EQ(threads.back(), j["hardware_threads"].get<int>());
+  EXPECT_TRUE(std::is_sorted(threads.begin(), threads.end()));
+}
+
+TEST_F(Cli, BenchVideoReportsDecodeOnlyAndRunRates) {
+  const RunResult r = run_bench({"--video", avi.string(), "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json records = bench_records(r);
+  // --video alone measures only the video.
+  ASSERT_EQ(records.size(), 2u) << r.out;
+  std::set<std::string> impls;
+  for (const auto& rec : records) {
+    EXPECT_EQ(rec["case"], "video");
+    EXPECT_EQ(rec["file"], avi.string());
+    EXPECT_EQ(rec["width"], kW);
+    EXPECT_EQ(rec["height"], kH);
+    EXPECT_EQ(rec["frames"], kFrames);
+    EXPECT_EQ(rec["threads"], 1);
+    EXPECT_GT(rec["fps"].get<double>(), 0);
+    impls.insert(rec["impl"].get<std::string>());
+  }
+  EXPECT_EQ(impls, (std::set<std::string>{"decode", "run"}));
+
+  const RunResult t = run_bench({"--video", avi.string(), "--threads", "1"});
+  ASSERT_TRUE(succeeded(t));
+  EXPECT_TRUE(contains(t.out, "decode f/s") && contains(t.out, "run f/s") && contains(t.out, "run/decode")) << t.out;
+  EXPECT_FALSE(contains(t.out, "vs opencv")) << "no synthetic cases without --case:\n" << t.out;
+}
+
+TEST_F(Cli, BenchVideoWithACaseMeasuresBoth) {
+  const RunResult r =
+      run_bench({"--video", avi.string(), "--case", "dots", "--size", "64x64", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(r));
+  const json records = bench_records(r);
+  std::set<std::string> cases;
+  for (const auto& rec : records) cases.insert(rec["case"].get<std::string>());
+  EXPECT_EQ(cases, (std::set<std::string>{"dots", "video"}));
+}
+
+TEST_F(Cli, BenchVideoBadFilesAreOneLineErrors) {
+  const std::string missing = (dir / "missing.avi").string();
+  expect_one_error(run_bench({"--video", missing}), {missing, "no such file"}, 1);
+  const fs::path text = dir / "fake.mp4";
+  write_text(text, "this is plain text, not an MP4 video\n");
+  expect_one_error(run_bench({"--video", text.string(), "--json"}), {text.string(), "neither an image nor a video"}, 1);
+  expect_one_error(run_bench({"--video", png(0)}), {png(0), "not a video"}, 1);
+  expect_one_error(run_bench({"--video", png_dir.string()}), {png_dir.string(), "not a video"}, 1);
 }
 
 }  // namespace

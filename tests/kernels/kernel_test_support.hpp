@@ -1,15 +1,22 @@
 #pragma once
 // What the kernel tests share: image comparison with a useful failure message, random and
-// edge-case images, and the stripe checks every row-range kernel must pass.
+// edge-case images, the stripe checks every row-range kernel must pass, and for blob extraction
+// blob comparison, OpenCV's view of the components and shapes that stress run merging.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <functional>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "kernels/blobs.hpp"
 #include "kernels/types.hpp"
 
 namespace neopipe::kernels::testing {
@@ -180,6 +187,186 @@ inline void expect_row_range_needs_allocated_output(const std::function<void(cv:
   EXPECT_NO_THROW(run(wrong, cv::Range::all()));
   EXPECT_EQ(wrong.size(), size);
   EXPECT_EQ(wrong.type(), dst_type);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Blobs (kernels/blobs.hpp)
+
+/// Centroids agree with OpenCV's to this (absolute) tolerance.
+inline constexpr double kCentroidTolerance = 1e-9;
+
+inline std::string describe(const Blob& b) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "{area " << b.area << ", box (" << b.x0 << ", " << b.y0 << ") " << b.width << "x" << b.height << ", c (" << b.cx
+    << ", " << b.cy << "), wc (" << b.wcx << ", " << b.wcy << "), mu20 " << b.mu20 << ", mu11 " << b.mu11 << ", mu02 "
+    << b.mu02 << "}";
+  return s.str();
+}
+
+/// Area, bounding box and centroid (to kCentroidTolerance): what OpenCV's statistics give.
+inline ::testing::AssertionResult same_geometry(const Blob& a, const Blob& e) {
+  if (a.area == e.area && a.x0 == e.x0 && a.y0 == e.y0 && a.width == e.width && a.height == e.height &&
+      std::abs(a.cx - e.cx) <= kCentroidTolerance && std::abs(a.cy - e.cy) <= kCentroidTolerance) {
+    return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure() << "actual " << describe(a) << "\nexpected " << describe(e);
+}
+
+/// Same count and order, every field equal, the floating-point ones bit for bit.
+inline ::testing::AssertionResult identical_blobs(const std::vector<Blob>& a, const std::vector<Blob>& e) {
+  if (a.size() != e.size()) return ::testing::AssertionFailure() << a.size() << " blobs, expected " << e.size();
+  const auto same_bits = [](double x, double y) {
+    return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+  };
+  for (size_t i = 0; i < a.size(); ++i) {
+    const auto& p = a[i];
+    const auto& q = e[i];
+    if (p.area != q.area || p.x0 != q.x0 || p.y0 != q.y0 || p.width != q.width || p.height != q.height ||
+        !same_bits(p.cx, q.cx) || !same_bits(p.cy, q.cy) || !same_bits(p.wcx, q.wcx) || !same_bits(p.wcy, q.wcy) ||
+        !same_bits(p.mu20, q.mu20) || !same_bits(p.mu11, q.mu11) || !same_bits(p.mu02, q.mu02)) {
+      return ::testing::AssertionFailure() << "blob " << i << ": " << describe(p) << " vs " << describe(q);
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+struct OpenCvComponents {
+  std::vector<Blob> blobs;  ///< area, box and centroid only; in first-pixel order
+  cv::Mat labels;           ///< 0 background, i + 1 for blobs[i]
+};
+
+/// cv::connectedComponentsWithStats on (src > threshold), renumbered by each component's first
+/// pixel in raster order.
+inline OpenCvComponents opencv_components(const cv::Mat& src, int threshold, Connectivity c) {
+  const cv::Mat mask = src > threshold;
+  cv::Mat cv_labels;
+  cv::Mat stats;
+  cv::Mat centroids;
+  const int n = cv::connectedComponentsWithStats(mask, cv_labels, stats, centroids, static_cast<int>(c), CV_32S);
+  std::vector<int> rank(static_cast<size_t>(n), 0);
+  int next = 0;
+  OpenCvComponents out;
+  out.labels.create(src.size(), CV_32SC1);
+  for (int y = 0; y < src.rows; ++y) {
+    for (int x = 0; x < src.cols; ++x) {
+      const int l = cv_labels.at<int>(y, x);
+      if (l != 0 && rank[static_cast<size_t>(l)] == 0) rank[static_cast<size_t>(l)] = ++next;
+      out.labels.at<int>(y, x) = l == 0 ? 0 : rank[static_cast<size_t>(l)];
+    }
+  }
+  out.blobs.resize(static_cast<size_t>(n - 1));
+  for (int l = 1; l < n; ++l) {
+    Blob& b = out.blobs[static_cast<size_t>(rank[static_cast<size_t>(l)] - 1)];
+    b.area = stats.at<int>(l, cv::CC_STAT_AREA);
+    b.x0 = stats.at<int>(l, cv::CC_STAT_LEFT);
+    b.y0 = stats.at<int>(l, cv::CC_STAT_TOP);
+    b.width = stats.at<int>(l, cv::CC_STAT_WIDTH);
+    b.height = stats.at<int>(l, cv::CC_STAT_HEIGHT);
+    b.cx = centroids.at<double>(l, 0);
+    b.cy = centroids.at<double>(l, 1);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shapes (0/255 images) that stress run merging
+
+/// Two bars joined at the bottom: two runs per row until the last row merges them.
+inline cv::Mat u_shape() {
+  cv::Mat m(15, 20, CV_8UC1, cv::Scalar(0));
+  m(cv::Rect(3, 2, 1, 11)).setTo(255);
+  m(cv::Rect(12, 2, 1, 11)).setTo(255);
+  m(cv::Rect(3, 12, 10, 1)).setTo(255);
+  // A second, nested U whose arms start higher than the outer one's.
+  m(cv::Rect(6, 1, 1, 9)).setTo(255);
+  m(cv::Rect(9, 1, 1, 9)).setTo(255);
+  m(cv::Rect(6, 9, 4, 1)).setTo(255);
+  return m;
+}
+
+/// A square spiral with 1-px gaps: one component under both connectivities, with many runs per
+/// row that join far away.
+inline cv::Mat spiral(int n) {
+  cv::Mat m(n, n, CV_8UC1, cv::Scalar(0));
+  int x = 0;
+  int y = 0;
+  const int dx[] = {1, 0, -1, 0};
+  const int dy[] = {0, 1, 0, -1};
+  m.at<std::uint8_t>(y, x) = 255;
+  int len = n - 1;
+  for (int seg = 0; len > 0; ++seg) {
+    for (int s = 0; s < len; ++s) {
+      x += dx[seg % 4];
+      y += dy[seg % 4];
+      m.at<std::uint8_t>(y, x) = 255;
+    }
+    if (seg >= 2 && seg % 2 == 0) len -= 2;
+  }
+  return m;
+}
+
+/// Diagonal staircases, one pixel per row: joined only under 8-connectivity. The main diagonal
+/// and the anti-diagonal cross, so under 8-connectivity they form one X.
+inline cv::Mat staircases(int n, bool cross) {
+  cv::Mat m(n, n + 4, CV_8UC1, cv::Scalar(0));
+  for (int i = 0; i < n; ++i) {
+    m.at<std::uint8_t>(i, i) = 255;
+    if (cross) m.at<std::uint8_t>(i, n - 1 - i) = 255;
+  }
+  return m;
+}
+
+/// Steps two pixels wide: consecutive rows overlap by one pixel, so joined under both.
+inline cv::Mat wide_staircase(int n) {
+  cv::Mat m(n, n + 1, CV_8UC1, cv::Scalar(0));
+  for (int i = 0; i < n; ++i) m(cv::Rect(i, i, 2, 1)).setTo(255);
+  return m;
+}
+
+/// Teeth at even columns that join only at the bottom row. With `ragged`, the teeth start on
+/// different rows, so their provisional labels are created out of left-to-right order.
+inline cv::Mat comb(int teeth, int height, bool ragged) {
+  cv::Mat m(height, 2 * teeth + 1, CV_8UC1, cv::Scalar(0));
+  for (int t = 0; t < teeth; ++t) {
+    const int top = ragged ? (t * 7) % (height - 1) : 0;
+    m(cv::Rect(2 * t, top, 1, height - top)).setTo(255);
+  }
+  m.row(height - 1).setTo(255);
+  return m;
+}
+
+/// Pixel checkerboard: under 8-connectivity one blob per colour, under 4 every pixel alone.
+inline cv::Mat checkerboard(cv::Size size) {
+  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
+  for (int y = 0; y < size.height; ++y) {
+    for (int x = (y % 2); x < size.width; x += 2) m.at<std::uint8_t>(y, x) = 255;
+  }
+  return m;
+}
+
+/// A ring along the frame edges, plus blobs in the corners inside it and one touching it.
+inline cv::Mat frame_touching(cv::Size size) {
+  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
+  m.row(0).setTo(255);
+  m.row(size.height - 1).setTo(255);
+  m.col(0).setTo(255);
+  m.col(size.width - 1).setTo(255);
+  m(cv::Rect(2, 2, 3, 2)).setTo(255);                             // near the top-left corner
+  m(cv::Rect(size.width - 4, size.height - 4, 2, 2)).setTo(255);  // near the bottom-right corner
+  m(cv::Rect(size.width / 2, 1, 2, 3)).setTo(255);                // touches the top edge
+  m.at<std::uint8_t>(size.height - 3, 2) = 255;                   // diagonal to nothing
+  return m;
+}
+
+/// Components that touch only the image edges (no ring).
+inline cv::Mat edge_blobs(cv::Size size) {
+  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
+  m(cv::Rect(0, 0, 3, 2)).setTo(255);                             // top-left corner
+  m(cv::Rect(size.width - 2, 0, 2, size.height)).setTo(255);      // whole right edge
+  m(cv::Rect(0, size.height - 1, size.width / 2, 1)).setTo(255);  // part of the bottom row
+  m(cv::Rect(0, 4, 1, 3)).setTo(255);                             // on the left edge
+  return m;
 }
 
 }  // namespace neopipe::kernels::testing

@@ -25,12 +25,24 @@
 
 namespace k = neopipe::kernels;
 namespace ref = neopipe::kernels::reference;
+using neopipe::kernels::testing::checkerboard;
+using neopipe::kernels::testing::comb;
+using neopipe::kernels::testing::describe;
+using neopipe::kernels::testing::edge_blobs;
+using neopipe::kernels::testing::frame_touching;
+using neopipe::kernels::testing::identical_blobs;
+using neopipe::kernels::testing::opencv_components;
+using neopipe::kernels::testing::OpenCvComponents;
 using neopipe::kernels::testing::random_binary;
+using neopipe::kernels::testing::same_geometry;
+using neopipe::kernels::testing::spiral;
+using neopipe::kernels::testing::staircases;
+using neopipe::kernels::testing::u_shape;
+using neopipe::kernels::testing::wide_staircase;
 
 namespace {
 
 constexpr std::uint64_t kSeed = 0x5eed'0003;
-constexpr double kCentroidTolerance = 1e-9;
 constexpr double kRelativeTolerance = 1e-9;
 
 constexpr k::Connectivity kBothConnectivities[] = {k::Connectivity::four, k::Connectivity::eight};
@@ -59,25 +71,8 @@ k::BlobParams params(int threshold, k::Connectivity c) {
 // ---------------------------------------------------------------------------------------------
 // Comparisons
 
-std::string describe(const k::Blob& b) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "{area " << b.area << ", box (" << b.x0 << ", " << b.y0 << ") " << b.width << "x" << b.height << ", c (" << b.cx
-    << ", " << b.cy << "), wc (" << b.wcx << ", " << b.wcy << "), mu20 " << b.mu20 << ", mu11 " << b.mu11 << ", mu02 "
-    << b.mu02 << "}";
-  return s.str();
-}
-
 bool close_relative(double actual, double expected) {
   return std::abs(actual - expected) <= kRelativeTolerance * std::max(1.0, std::abs(expected));
-}
-
-::testing::AssertionResult same_geometry(const k::Blob& a, const k::Blob& e) {
-  if (a.area == e.area && a.x0 == e.x0 && a.y0 == e.y0 && a.width == e.width && a.height == e.height &&
-      std::abs(a.cx - e.cx) <= kCentroidTolerance && std::abs(a.cy - e.cy) <= kCentroidTolerance) {
-    return ::testing::AssertionSuccess();
-  }
-  return ::testing::AssertionFailure() << "actual " << describe(a) << "\nexpected " << describe(e);
 }
 
 /// Every field, the floating-point ones to a relative 1e-9.
@@ -87,21 +82,6 @@ bool close_relative(double actual, double expected) {
     return ::testing::AssertionSuccess();
   }
   return ::testing::AssertionFailure() << "actual " << describe(a) << "\nexpected " << describe(e);
-}
-
-/// Bit-identical blobs.
-::testing::AssertionResult identical_blobs(const std::vector<k::Blob>& a, const std::vector<k::Blob>& e) {
-  if (a.size() != e.size()) return ::testing::AssertionFailure() << a.size() << " blobs, expected " << e.size();
-  for (size_t i = 0; i < a.size(); ++i) {
-    const auto& p = a[i];
-    const auto& q = e[i];
-    if (p.area != q.area || p.x0 != q.x0 || p.y0 != q.y0 || p.width != q.width || p.height != q.height ||
-        p.cx != q.cx || p.cy != q.cy || p.wcx != q.wcx || p.wcy != q.wcy || p.mu20 != q.mu20 || p.mu11 != q.mu11 ||
-        p.mu02 != q.mu02) {
-      return ::testing::AssertionFailure() << "blob " << i << ": " << describe(p) << " vs " << describe(q);
-    }
-  }
-  return ::testing::AssertionSuccess();
 }
 
 ::testing::AssertionResult same_labels(const cv::Mat& actual, const cv::Mat& expected) {
@@ -119,47 +99,6 @@ bool close_relative(double actual, double expected) {
     }
   }
   return ::testing::AssertionSuccess();
-}
-
-// ---------------------------------------------------------------------------------------------
-// OpenCV's view of the components
-
-struct OpenCvComponents {
-  std::vector<k::Blob> blobs;  ///< area, box and centroid only; in first-pixel order
-  cv::Mat labels;              ///< 0 background, i + 1 for blobs[i]
-};
-
-/// cv::connectedComponentsWithStats on (src > threshold), renumbered by each component's first
-/// pixel in raster order.
-OpenCvComponents opencv_components(const cv::Mat& src, int threshold, k::Connectivity c) {
-  const cv::Mat mask = src > threshold;
-  cv::Mat cv_labels;
-  cv::Mat stats;
-  cv::Mat centroids;
-  const int n = cv::connectedComponentsWithStats(mask, cv_labels, stats, centroids, static_cast<int>(c), CV_32S);
-  std::vector<int> rank(static_cast<size_t>(n), 0);
-  int next = 0;
-  OpenCvComponents out;
-  out.labels.create(src.size(), CV_32SC1);
-  for (int y = 0; y < src.rows; ++y) {
-    for (int x = 0; x < src.cols; ++x) {
-      const int l = cv_labels.at<int>(y, x);
-      if (l != 0 && rank[static_cast<size_t>(l)] == 0) rank[static_cast<size_t>(l)] = ++next;
-      out.labels.at<int>(y, x) = l == 0 ? 0 : rank[static_cast<size_t>(l)];
-    }
-  }
-  out.blobs.resize(static_cast<size_t>(n - 1));
-  for (int l = 1; l < n; ++l) {
-    k::Blob& b = out.blobs[static_cast<size_t>(rank[static_cast<size_t>(l)] - 1)];
-    b.area = stats.at<int>(l, cv::CC_STAT_AREA);
-    b.x0 = stats.at<int>(l, cv::CC_STAT_LEFT);
-    b.y0 = stats.at<int>(l, cv::CC_STAT_TOP);
-    b.width = stats.at<int>(l, cv::CC_STAT_WIDTH);
-    b.height = stats.at<int>(l, cv::CC_STAT_HEIGHT);
-    b.cx = centroids.at<double>(l, 0);
-    b.cy = centroids.at<double>(l, 1);
-  }
-  return out;
 }
 
 /// mu20, mu11, mu02 of each blob against cv::moments of its mask, cut out of the label image.
@@ -206,106 +145,6 @@ void expect_blobs_match_reference(const cv::Mat& src, const k::BlobParams& p, co
 void expect_blobs_match_both(const cv::Mat& src, const k::BlobParams& p) {
   expect_blobs_match_opencv(src, p);
   expect_blobs_match_reference(src, p);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Shapes (0/255 images)
-
-/// Two bars joined at the bottom: two runs per row until the last row merges them.
-cv::Mat u_shape() {
-  cv::Mat m(15, 20, CV_8UC1, cv::Scalar(0));
-  m(cv::Rect(3, 2, 1, 11)).setTo(255);
-  m(cv::Rect(12, 2, 1, 11)).setTo(255);
-  m(cv::Rect(3, 12, 10, 1)).setTo(255);
-  // A second, nested U whose arms start higher than the outer one's.
-  m(cv::Rect(6, 1, 1, 9)).setTo(255);
-  m(cv::Rect(9, 1, 1, 9)).setTo(255);
-  m(cv::Rect(6, 9, 4, 1)).setTo(255);
-  return m;
-}
-
-/// A square spiral with 1-px gaps: one component under both connectivities, with many runs per
-/// row that join far away.
-cv::Mat spiral(int n) {
-  cv::Mat m(n, n, CV_8UC1, cv::Scalar(0));
-  int x = 0;
-  int y = 0;
-  const int dx[] = {1, 0, -1, 0};
-  const int dy[] = {0, 1, 0, -1};
-  m.at<std::uint8_t>(y, x) = 255;
-  int len = n - 1;
-  for (int seg = 0; len > 0; ++seg) {
-    for (int s = 0; s < len; ++s) {
-      x += dx[seg % 4];
-      y += dy[seg % 4];
-      m.at<std::uint8_t>(y, x) = 255;
-    }
-    if (seg >= 2 && seg % 2 == 0) len -= 2;
-  }
-  return m;
-}
-
-/// Diagonal staircases, one pixel per row: joined only under 8-connectivity. The main diagonal
-/// and the anti-diagonal cross, so under 8-connectivity they form one X.
-cv::Mat staircases(int n, bool cross) {
-  cv::Mat m(n, n + 4, CV_8UC1, cv::Scalar(0));
-  for (int i = 0; i < n; ++i) {
-    m.at<std::uint8_t>(i, i) = 255;
-    if (cross) m.at<std::uint8_t>(i, n - 1 - i) = 255;
-  }
-  return m;
-}
-
-/// Steps two pixels wide: consecutive rows overlap by one pixel, so joined under both.
-cv::Mat wide_staircase(int n) {
-  cv::Mat m(n, n + 1, CV_8UC1, cv::Scalar(0));
-  for (int i = 0; i < n; ++i) m(cv::Rect(i, i, 2, 1)).setTo(255);
-  return m;
-}
-
-/// Teeth at even columns that join only at the bottom row. With `ragged`, the teeth start on
-/// different rows, so their provisional labels are created out of left-to-right order.
-cv::Mat comb(int teeth, int height, bool ragged) {
-  cv::Mat m(height, 2 * teeth + 1, CV_8UC1, cv::Scalar(0));
-  for (int t = 0; t < teeth; ++t) {
-    const int top = ragged ? (t * 7) % (height - 1) : 0;
-    m(cv::Rect(2 * t, top, 1, height - top)).setTo(255);
-  }
-  m.row(height - 1).setTo(255);
-  return m;
-}
-
-/// Pixel checkerboard: under 8-connectivity one blob per colour, under 4 every pixel alone.
-cv::Mat checkerboard(cv::Size size) {
-  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
-  for (int y = 0; y < size.height; ++y) {
-    for (int x = (y % 2); x < size.width; x += 2) m.at<std::uint8_t>(y, x) = 255;
-  }
-  return m;
-}
-
-/// A ring along the frame edges, plus blobs in the corners inside it and one touching it.
-cv::Mat frame_touching(cv::Size size) {
-  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
-  m.row(0).setTo(255);
-  m.row(size.height - 1).setTo(255);
-  m.col(0).setTo(255);
-  m.col(size.width - 1).setTo(255);
-  m(cv::Rect(2, 2, 3, 2)).setTo(255);                             // near the top-left corner
-  m(cv::Rect(size.width - 4, size.height - 4, 2, 2)).setTo(255);  // near the bottom-right corner
-  m(cv::Rect(size.width / 2, 1, 2, 3)).setTo(255);                // touches the top edge
-  m.at<std::uint8_t>(size.height - 3, 2) = 255;                   // diagonal to nothing
-  return m;
-}
-
-/// Components that touch only the image edges (no ring).
-cv::Mat edge_blobs(cv::Size size) {
-  cv::Mat m(size, CV_8UC1, cv::Scalar(0));
-  m(cv::Rect(0, 0, 3, 2)).setTo(255);                             // top-left corner
-  m(cv::Rect(size.width - 2, 0, 2, size.height)).setTo(255);      // whole right edge
-  m(cv::Rect(0, size.height - 1, size.width / 2, 1)).setTo(255);  // part of the bottom row
-  m(cv::Rect(0, 4, 1, 3)).setTo(255);                             // on the left edge
-  return m;
 }
 
 int count_blobs(const cv::Mat& src, k::Connectivity c) {

@@ -605,3 +605,27 @@ TEST(RunStream, RealtimeModeCountsEveryFrameReadAsProcessedOrDropped) {
   EXPECT_EQ(stats.blobs, 0);  // the graph has no blob output
   EXPECT_TRUE(stats.realtime);
 }
+
+TEST(BlobsNode, TallFramesLabelledInStripesEqualOnePass) {
+  // Frames of 256 rows or more are labelled in parallel stripes and joined: the table must be the
+  // kernel's single pass, bit for bit, for every thread count (components cross the stripe borders).
+  cv::RNG rng(17);
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 3; ++i) {
+    cv::Mat f(1080, 333, CV_8UC1);
+    rng.fill(f, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(f, f, {9, 9}, 3.0);
+    frames.push_back(f);
+  }
+  const auto spec = pl::blob_graph({.threshold = 127, .connectivity = 8, .source = pl::PortType::gray8});
+  for (int threads : {1, 2, 3, 8}) {
+    const auto results = pl::run_frames(pl::compile(spec, pl::standard_kernels()), frames, {.threads = threads});
+    for (size_t f = 0; f < frames.size(); ++f) {
+      neopipe::kernels::BlobParams p;
+      p.threshold = 127;
+      const auto expected = neopipe::kernels::extract_blobs(frames[f], p, frames[f]);
+      expect_same_blobs(std::get<pl::BlobList>(results[f].outputs.at(0)), expected,
+                        "threads " + std::to_string(threads) + ", frame " + std::to_string(f));
+    }
+  }
+}

@@ -1,0 +1,94 @@
+#include "bench/video_bench.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "pipeline/compiled_graph.hpp"
+#include "pipeline/kernel_registry.hpp"
+#include "pipeline/stream_runner.hpp"
+
+namespace neopipe::bench {
+namespace {
+
+namespace io = pipeline::io;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double time_decode(const std::string& path, io::ColorFormat format, double min_seconds) {
+  std::int64_t frames = 0;
+  double seconds = 0;
+  while (seconds < min_seconds) {
+    const auto t0 = Clock::now();
+    const auto source = io::open_frame_source({path}, format);
+    while (seconds + seconds_since(t0) < min_seconds && source->next()) ++frames;
+    seconds += seconds_since(t0);
+  }
+  return static_cast<double>(frames) / seconds;
+}
+
+double time_run(const std::string& path, const pipeline::GraphSpec& graph, io::ColorFormat format, int threads,
+                double min_seconds) {
+  std::int64_t frames = 0;
+  double seconds = 0;
+  std::atomic<bool> stop{false};
+  pipeline::StreamOptions so;
+  so.executor.threads = threads;
+  so.stop = &stop;
+  while (seconds < min_seconds) {
+    pipeline::CompiledGraph compiled = pipeline::compile(graph, pipeline::standard_kernels());
+    const auto t0 = Clock::now();
+    const auto source = io::open_frame_source({path}, format);
+    pipeline::RunStats stats;
+    const double before = seconds;
+    pipeline::run_stream(
+        *source, std::move(compiled), so,
+        [&](const pipeline::FrameResult& /*discarded*/) {
+          ++frames;
+          if (before + seconds_since(t0) >= min_seconds) stop = true;
+        },
+        stats);
+    seconds += seconds_since(t0);
+  }
+  return static_cast<double>(frames) / seconds;
+}
+
+}  // namespace
+
+VideoInfo probe_video(const std::string& path, io::ColorFormat format) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw io::SourceError(path + ": a directory, not a video file");
+  const auto source = io::open_frame_source({path}, format);  // names the file if missing or unreadable
+  if (cv::haveImageReader(path)) throw io::SourceError(path + ": an image, not a video file");
+  const auto first = source->next();
+  if (!first) throw io::SourceError(path + ": the video has no frames");
+  VideoInfo info;
+  info.path = path;
+  info.size = first->image.size();
+  info.frames = source->frame_count();
+  info.fps = source->fps();
+  return info;
+}
+
+std::vector<VideoRecord> run_video_bench(const std::string& path, const pipeline::GraphSpec& graph,
+                                         io::ColorFormat format, int threads, const BenchOptions& o) {
+  std::vector<double> decode;
+  std::vector<double> run;
+  for (int r = 0; r < std::max(o.repeats, 1); ++r) {
+    decode.push_back(time_decode(path, format, o.min_seconds));
+    run.push_back(time_run(path, graph, format, threads, o.min_seconds));
+  }
+  return {{"decode", threads, median(decode)}, {"run", threads, median(run)}};
+}
+
+}  // namespace neopipe::bench
