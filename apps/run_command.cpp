@@ -84,7 +84,7 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", a.threads, "Worker threads (default: one per hardware thread)")
       ->check(CLI::Range(1, 256));
-  cmd->add_option("--frames-in-flight", a.frames_in_flight, "Frames processed at once (default: threads + 2)")
+  cmd->add_option("--frames-in-flight", a.frames_in_flight, "Frames processed at once (default: 2 x (threads + 2))")
       ->check(CLI::Range(2, 256));
   cmd->add_flag("--moments", a.moments, "Add the second central moments mu20,mu11,mu02 to the table");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress bar and no summary");

@@ -37,9 +37,10 @@ class Executor::Impl {
   Impl(CompiledGraph graph, ExecutorOptions o, ResultHandler handler)
       : graph_(std::move(graph)),
         threads_(o.threads > 0 ? o.threads : tbb::info::default_concurrency()),
-        frames_in_flight_(o.frames_in_flight > 0 ? std::max(o.frames_in_flight, 2) : threads_ + 2),
+        frames_in_flight_(o.frames_in_flight > 0 ? std::max(o.frames_in_flight, 2) : 2 * (threads_ + 2)),
         min_stripe_rows_(std::max(o.min_stripe_rows, 1)),
         fused_stripe_rows_(std::max(o.fused_stripe_rows, 0)),
+        refill_slack_(std::max(0, frames_in_flight_ / 2 - 1)),
         on_result_(std::move(handler)),
         // The driver thread does not join the arena, so the pool needs `threads_` workers of its own.
         control_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads_) + 1),
@@ -115,7 +116,9 @@ class Executor::Impl {
         return true;
       }
       if (!block) return false;
-      cv_.wait(lk);
+      // Waits until several slots are free rather than one, so that the driver wakes once per few
+      // frames instead of once per frame: each wake-up takes a core from a worker on a small machine.
+      cv_.wait(lk, [&] { return error_ || running_ == 0 || can_admit(next_seq_ + refill_slack_); });
     }
   }
 
@@ -304,18 +307,23 @@ class Executor::Impl {
     // executor (waiting for running_ == 0 in its destructor) cannot vanish while the task still
     // enqueues its successors.
     std::vector<Task> ready;
+    bool wake = err != nullptr;
     {
       const std::lock_guard lk(m_);
       if (err) {
         record_error(err, t.seq);
       } else {
+        const std::int64_t prefix = complete_prefix_;
         ready = claim(node_done(t));
+        wake = complete_prefix_ != prefix;
       }
     }
     enqueue(ready);
     const std::lock_guard lk(m_);
     --running_;
-    cv_.notify_all();
+    // The driver waits for frames to complete in order (a free slot, a result to deliver), for an
+    // error, or for the last task to end; any other wake-up would only cost it a context switch.
+    if (wake || running_ == 0) cv_.notify_all();
   }
 
   // What input k of node i reads on frame seq: its producer's value on this frame, or for a delayed
@@ -423,6 +431,7 @@ class Executor::Impl {
   int frames_in_flight_;
   int min_stripe_rows_;
   int fused_stripe_rows_;
+  int refill_slack_;  // extra free slots a blocked submit waits for (see submit)
   ResultHandler on_result_;
   tbb::global_control control_;
   tbb::task_arena arena_;

@@ -20,7 +20,9 @@ namespace neopipe::pipeline {
 
 struct ExecutorOptions {
   int threads = 0;            ///< worker threads; 0 = one per hardware thread
-  int frames_in_flight = 0;   ///< frames being processed at once (>= 2); 0 = threads + 2
+  /// Frames being processed at once (>= 2); 0 = 2 * (threads + 2): a blocked submit waits for half
+  /// the slots to free and refills them in one go, while the other half keep every worker busy.
+  int frames_in_flight = 0;
   int min_stripe_rows = 16;   ///< stripes are never shorter than this
   bool fuse = true;           ///< run chains of point and 3x3 nodes as fused steps (see fusion.hpp)
   int fused_stripe_rows = 0;  ///< rows per stripe of a fused step; 0 = sized to the cache

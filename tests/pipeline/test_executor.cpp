@@ -642,7 +642,7 @@ TEST(Executor, OptionDefaults) {
   const auto graph = [] { return pl::compile(pl::blob_graph(), pl::standard_kernels()); };
   pl::Executor defaults(graph(), {}, [](pl::FrameResult&&) {});
   EXPECT_GE(defaults.threads(), 1);
-  EXPECT_EQ(defaults.frames_in_flight(), defaults.threads() + 2);
+  EXPECT_EQ(defaults.frames_in_flight(), 2 * (defaults.threads() + 2));
   pl::Executor one(graph(), {.threads = 3, .frames_in_flight = 1}, [](pl::FrameResult&&) {});
   EXPECT_EQ(one.threads(), 3);
   EXPECT_EQ(one.frames_in_flight(), 2);  // at least two
