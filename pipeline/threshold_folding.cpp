@@ -32,10 +32,9 @@ const InputBinding* binding(const NodeSpec& n, const std::string& input) {
 /// The index of the blobs node `threshold` folds into, if it does.
 std::optional<size_t> fold_target(const GraphSpec& spec, const NodeSpec& threshold) {
   if (threshold.kernel != "threshold") return std::nullopt;
-  const auto value = int_param(threshold.params, "value", std::nullopt);  // default: otsu
   const auto high = int_param(threshold.params, "high", 255);
   const InputBinding* source = binding(threshold, "in");
-  if (!value || !high || source == nullptr || source->delayed) return std::nullopt;
+  if (!high || source == nullptr || source->delayed) return std::nullopt;
   if (std::any_of(spec.outputs.begin(), spec.outputs.end(), [&](const PortRef& o) { return o.node == threshold.name; }))
     return std::nullopt;
   std::optional<size_t> target;
@@ -67,7 +66,13 @@ GraphSpec fold_one(const GraphSpec& spec, size_t threshold_index, size_t blobs_i
       continue;
     }
     YAML::Node params = n.params.IsMap() ? YAML::Clone(n.params) : YAML::Node(YAML::NodeType::Map);
-    params["threshold"] = *int_param(threshold.params, "value", std::nullopt);
+    // A fixed value, or Otsu's: blobs chooses it from the histogram of its own `in`, which is now
+    // the threshold's input, so it is the same T.
+    if (const auto value = int_param(threshold.params, "value", std::nullopt)) {
+      params["threshold"] = *value;
+    } else {
+      params["threshold"] = "otsu";
+    }
     std::vector<InputBinding> inputs = n.inputs;
     for (auto& b : inputs) {
       if (b.input == "in") b.from = binding(threshold, "in")->from;

@@ -27,7 +27,7 @@ class HistogramNode final : public Node {
 };
 
 class BlobsNode final : public Node {
-  static constexpr int kMinStripeRows = 256;
+  static constexpr int kMinStripeRows = 512;
 
  public:
   BlobsNode(kernels::BlobParams params, bool otsu)

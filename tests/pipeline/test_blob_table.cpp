@@ -607,12 +607,12 @@ TEST(RunStream, RealtimeModeCountsEveryFrameReadAsProcessedOrDropped) {
 }
 
 TEST(BlobsNode, TallFramesLabelledInStripesEqualOnePass) {
-  // Frames of 256 rows or more are labelled in parallel stripes and joined: the table must be the
+  // Frames of 1024 rows or more are labelled in parallel stripes and joined: the table must be the
   // kernel's single pass, bit for bit, for every thread count (components cross the stripe borders).
   cv::RNG rng(17);
   std::vector<cv::Mat> frames;
   for (int i = 0; i < 3; ++i) {
-    cv::Mat f(1080, 333, CV_8UC1);
+    cv::Mat f(1080, 333, CV_8UC1);  // two stripes of 540 rows on 2+ threads
     rng.fill(f, cv::RNG::UNIFORM, 0, 256);
     cv::GaussianBlur(f, f, {9, 9}, 3.0);
     frames.push_back(f);

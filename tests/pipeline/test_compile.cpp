@@ -653,16 +653,21 @@ TEST(Compile, PortUsedOnlyAsInitialValueIsNotDangling) {
 // Compiled graphs
 
 TEST(Compile, OrdersProducersBeforeConsumers) {
-  // Declared consumers first; the compiled order must put every producer first.
-  const pl::CompiledGraph g = compile_yaml(yaml_lines({
-      "nodes:",
-      "  - {name: blobs, kernel: blobs, params: {threshold: 0}, inputs: {in: binary, weights: gray}}",
-      "  - {name: hist, kernel: histogram, inputs: {in: gray}}",
-      "  - {name: binary, kernel: threshold, params: {value: otsu}, inputs: {in: gray}}",
-      "  - {name: gray, kernel: gray, inputs: {in: src}}",
-      "  - {name: src, kernel: source, params: {format: bgr}}",
-      "outputs: [blobs, hist, gray]",
-  }));
+  // Declared consumers first; the compiled order must put every producer first. As declared: the
+  // folding pass would merge the threshold into blobs.
+  const pl::CompiledGraph g = pl::compile_as_declared(
+      pl::parse_graph_spec(
+          yaml_lines({
+              "nodes:",
+              "  - {name: blobs, kernel: blobs, params: {threshold: 0}, inputs: {in: binary, weights: gray}}",
+              "  - {name: hist, kernel: histogram, inputs: {in: gray}}",
+              "  - {name: binary, kernel: threshold, params: {value: otsu}, inputs: {in: gray}}",
+              "  - {name: gray, kernel: gray, inputs: {in: src}}",
+              "  - {name: src, kernel: source, params: {format: bgr}}",
+              "outputs: [blobs, hist, gray]",
+          }),
+          kOrigin),
+      pl::standard_kernels());
   ASSERT_EQ(g.nodes().size(), 5U);
   for (size_t c = 0; c < g.nodes().size(); ++c) {
     for (const auto& in : g.nodes()[c].inputs) {

@@ -646,7 +646,7 @@ TEST(Executor, OptionDefaults) {
   pl::Executor one(graph(), {.threads = 3, .frames_in_flight = 1}, [](pl::FrameResult&&) {});
   EXPECT_EQ(one.threads(), 3);
   EXPECT_EQ(one.frames_in_flight(), 2);  // at least two
-  EXPECT_EQ(one.graph().nodes().size(), 4U);
+  EXPECT_EQ(one.graph().nodes().size(), 3U);  // src, gray, blobs (the threshold folded into blobs)
 }
 
 TEST(Executor, RunFramesNumbersFromZero) {

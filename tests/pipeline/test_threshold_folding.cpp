@@ -69,9 +69,9 @@ TEST(ThresholdFolding, BuiltInBlobGraphFoldsAFixedThreshold) {
             (std::vector<std::string>{"src", "gray", "binary", "blobs"}));
   EXPECT_EQ(node_names(pl::compile(fixed, pl::standard_kernels(), {.fold_thresholds = false})),
             (std::vector<std::string>{"src", "gray", "binary", "blobs"}));
-  // Otsu's threshold (the default) is chosen from the whole frame: it stays a node of its own.
+  // Otsu's threshold (the default) folds too: blobs picks the same T from the same histogram.
   EXPECT_EQ(node_names(pl::compile(pl::blob_graph(), pl::standard_kernels())),
-            (std::vector<std::string>{"src", "gray", "binary", "blobs"}));
+            (std::vector<std::string>{"src", "gray", "blobs"}));
 }
 
 TEST(ThresholdFolding, FoldedTablesEqualDeclaredOnesForEveryThresholdAndConnectivity) {
@@ -93,11 +93,25 @@ TEST(ThresholdFolding, FoldedTablesEqualDeclaredOnesForEveryThresholdAndConnecti
   }
 }
 
+TEST(ThresholdFolding, OtsuThresholdsFoldIntoBlobsChoosingOtsu) {
+  for (const char* threshold : {"params: {value: otsu}, inputs: {in: src}", "inputs: {in: src}",
+                                "params: {value: otsu, high: 7}, inputs: {in: src}"}) {
+    for (const char* blobs : {"inputs: {in: binary, weights: src}",
+                              "params: {threshold: 6, connectivity: 4}, inputs: {in: binary, weights: src}"}) {
+      SCOPED_TRACE(std::string(threshold) + " / " + blobs);
+      const std::string yaml = graph(threshold, blobs);
+      const auto folded = pl::fold_thresholds_into_blobs(pl::parse_graph_spec(yaml, "spec.yaml"));
+      ASSERT_TRUE(folded.has_value());
+      ASSERT_EQ(folded->nodes.size(), 2U);
+      EXPECT_EQ(folded->nodes[1].params["threshold"].as<std::string>(), "otsu");
+      expect_same_tables(yaml);
+    }
+  }
+}
+
 TEST(ThresholdFolding, PairsThatMeanSomethingElseDoNotFold) {
   const std::string blobs_in = "inputs: {in: binary, weights: src}";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"Otsu's threshold needs the whole frame first", graph("params: {value: otsu}, inputs: {in: src}", blobs_in)},
-      {"the default threshold is Otsu's", graph("inputs: {in: src}", blobs_in)},
       {"without weights, the weights would change from binary to gray",
        graph("params: {value: 100}, inputs: {in: src}", "inputs: {in: binary}")},
       {"blobs' threshold at high keeps nothing",
