@@ -1,11 +1,12 @@
 #pragma once
 // Runs a compiled graph on a stream of frames, PIPE-style: several frames in flight at once, each
-// node busy on a different frame (a node runs frames in order, one at a time), and point and 3x3
-// nodes cut into stripes of rows that run in parallel. Results come back in frame order and are
-// identical for every thread count: the kernels are row-independent and every reduction is exact.
+// node busy on a different frame (stateful nodes run frames in order, one at a time; stateless ones
+// may overlap frames), chains of point and 3x3 nodes fused into stripe-by-stripe steps, and stripes
+// of rows run in parallel. Results come back in frame order and are identical for every thread
+// count: the kernels are row-independent and every reduction is exact.
 //
-// Threading: one driver thread (the caller: it reads frames and consumes results) plus `threads`
-// oneTBB workers in the executor's own arena.
+// Threading: one driver thread (the caller: it submits frames and consumes results; run_stream
+// reads them on a reader thread of its own) plus `threads` oneTBB workers in the executor's arena.
 
 #include <cstdint>
 #include <functional>
