@@ -159,7 +159,7 @@ WeightSums weight_sums_long(const std::uint8_t* w, int xs, int xe) noexcept {
     auto prefix = hn::Zero(d64);  // sum over chunks k of the weights of chunks 0..k
     auto local = hn::Zero(d32);
     for (int k = 0; k < chunks; ++k) {
-      const auto v = hn::LoadU(d8, p + i + k * n);
+      const auto v = hn::LoadU(d8, p + i + static_cast<std::ptrdiff_t>(k) * n);
       sw = hn::Add(sw, hn::SumsOf8(v));
       prefix = hn::Add(prefix, sw);
       local = hn::Add(local, weighted_offsets(v));

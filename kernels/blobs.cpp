@@ -117,7 +117,7 @@ void label_rows(const cv::Mat& src, const cv::Mat& weights, const BlobParams& pa
     } else {
       n = detail::find_runs(src.ptr<std::uint8_t>(y), width, static_cast<std::uint8_t>(params.threshold), current);
     }
-    const std::uint8_t* wrow = weights.ptr<std::uint8_t>(y);
+    const auto* wrow = weights.ptr<std::uint8_t>(y);
     int j = 0;
     for (int i = 0; i < n; ++i) {
       Run& run = current[i];

@@ -176,7 +176,7 @@ CompiledGraph compile_as_declared(const GraphSpec& spec, const KernelRegistry& r
           }
           in.initial_fill = *fill;
         } else {
-          const PortRef& init = std::get<PortRef>(b.initial);
+          const auto& init = std::get<PortRef>(b.initial);
           in.initial_from = r.resolve(init);
           const PortType it = r.type(in.initial_from);
           if (it != d->type) {

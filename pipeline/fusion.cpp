@@ -10,7 +10,7 @@ namespace neopipe::pipeline {
 namespace {
 
 // Bytes a stripe's buffers may take: about a quarter of a core's L2, leaving room for the inputs.
-constexpr size_t kStripeBudget = 192 * 1024;
+constexpr size_t kStripeBudget = size_t{192} * 1024;
 
 // Rows of member `pos`'s output held while the sink computes rows [r0, r1).
 struct Span {
