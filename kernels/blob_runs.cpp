@@ -130,23 +130,15 @@ class OffsetWeigher {
   hn::VFromD<hn::Repartition<std::int16_t, D8>> offset_lo_ = hn::BitCast(d16_, hn::ZipLower(du16_, iota_, zero_));
   hn::VFromD<hn::Repartition<std::int16_t, D8>> offset_hi_ = hn::BitCast(d16_, hn::ZipUpper(du16_, iota_, zero_));
 };
-#endif
 
-// Runs at least a vector long: whole vectors, widened and multiplied by their offsets.
+// Runs at least a vector long (the caller checks): whole vectors, widened and multiplied by their
+// offsets.
 WeightSums weight_sums_long(const std::uint8_t* w, int xs, int xe) noexcept {
   const D8 d8;
   const int n = static_cast<int>(hn::Lanes(d8));
   const std::uint8_t* p = w + xs;
   const int len = xe - xs;
   WeightSums out;
-  if (len < n || HWY_TARGET == HWY_SCALAR) {
-    for (int i = 0; i < len; ++i) {
-      out.sw += p[i];
-      out.swx += std::int64_t{p[i]} * (xs + i);
-    }
-    return out;
-  }
-#if HWY_TARGET != HWY_SCALAR
   const hn::Repartition<std::uint64_t, D8> d64;
   const hn::Repartition<std::int32_t, D8> d32;
   const OffsetWeigher weighted_offsets;
@@ -183,15 +175,17 @@ WeightSums weight_sums_long(const std::uint8_t* w, int xs, int xe) noexcept {
     out.sw += s;
     out.swx += (std::int64_t{xe} - n) * s + off;
   }
-#endif
   return out;
 }
+#endif
 
 }  // namespace
 
 WeightSums weight_sums(const std::uint8_t* row, int xs, int xe) noexcept {
   // A short run (a marble's row) is cheaper one pixel at a time than set up for vectors.
-  if (xe - xs >= 32) return weight_sums_long(row, xs, xe);
+#if HWY_TARGET != HWY_SCALAR
+  if (xe - xs >= std::max(32, static_cast<int>(hn::Lanes(D8())))) return weight_sums_long(row, xs, xe);
+#endif
   WeightSums out;
   for (int x = xs; x < xe; ++x) {
     out.sw += row[x];
