@@ -269,7 +269,8 @@ CompiledGraph compile_as_declared(const GraphSpec& spec, const KernelRegistry& r
 }
 
 CompiledGraph compile(const GraphSpec& spec, const KernelRegistry& registry, const CompileOptions& options) {
-  // Validated as declared first, so that every message speaks of the graph the user wrote.
+  // Validated as declared first, so that every message speaks of the graph the user wrote and a
+  // mistake in a node the fold removes (a threshold's bad `high`) is still reported.
   CompiledGraph g = compile_as_declared(spec, registry);
   if (!options.fold_thresholds) return g;
   if (auto folded = fold_thresholds_into_blobs(spec)) return compile_as_declared(*folded, registry);
