@@ -150,3 +150,10 @@ TEST(ThresholdFolding, ErrorsSpeakOfTheGraphAsDeclared) {
     EXPECT_NE(std::string(e.what()).find("nowhere"), std::string::npos) << e.what();
   }
 }
+
+TEST(ThresholdFolding, AMistakeInTheFoldedThresholdIsStillReported) {
+  // Folding would remove the threshold node, and its bad parameter with it: compile() must not.
+  const std::string yaml =
+      graph("params: {value: 100, high: 999}, inputs: {in: src}", "inputs: {in: binary, weights: src}");
+  EXPECT_THROW((void)pl::compile(pl::parse_graph_spec(yaml, "spec.yaml"), pl::standard_kernels()), pl::GraphError);
+}
