@@ -1,0 +1,70 @@
+#include "apps/sim_command.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "apps/cli_support.hpp"
+#include "sim/world.hpp"
+
+namespace neopipe::apps {
+namespace {
+
+Eigen::Vector2d parse_size_mm(const std::string& text, const std::string& option) {
+  double w = 0;
+  double h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof() || !(w > 0 && h > 0)) {
+    throw UsageError{option + " " + text + ": expected WxH in mm, e.g. 500x500"};
+  }
+  return {w, h};
+}
+
+int world_command(const SimWorldArgs& a) {
+  sim::WorldRequest q;
+  q.objects = a.objects;
+  q.size = parse_size_mm(a.size, "--size");
+  q.marble_diameter = a.diameter;
+  q.min_gap = a.min_gap;
+  q.seed = a.seed;
+  const sim::World w = sim::generate_world(q);
+  sim::save_world(w, a.out);
+  std::cerr << fmt::format("neopipe sim world: {} marbles of {} mm in {} x {} mm (seed {}) -> {}\n", w.objects.size(),
+                           w.marble_diameter, w.size.x(), w.size.y(), a.seed, a.out);
+  return kExitOk;
+}
+
+}  // namespace
+
+CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
+  CLI::App* sim =
+      parent.add_subcommand("sim", "Simulator: make worlds, render camera frames and videos, drive the arm");
+  sim->require_subcommand(1);
+
+  CLI::App* world =
+      sim->add_subcommand("world", "Scatter identical marbles at random, without overlap; write a world file");
+  world->add_option("--objects", a.world.objects, "Number of marbles")->check(CLI::NonNegativeNumber);
+  world->add_option("--size", a.world.size, "Workspace W x H in mm")->type_name("WxH")->capture_default_str();
+  world->add_option("--diameter", a.world.diameter, "Marble diameter, mm")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  world->add_option("--min-gap", a.world.min_gap, "Smallest free space between two marbles, mm")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  world->add_option("--seed", a.world.seed, "Random seed: the same seed gives the same world")->capture_default_str();
+  world->add_option("--out", a.world.out, "World file to write (YAML)")->required()->type_name("world.yaml");
+
+  CLI::App* arm =
+      sim->add_subcommand("arm", "Drive the SCARA arm through tool-frame moves; report commanded vs actual poses");
+  add_sim_arm_options(*arm, a.arm);
+  return sim;
+}
+
+int sim_command(const CLI::App& sim, const SimArgs& a) {
+  if (sim.got_subcommand("world")) return world_command(a.world);
+  if (sim.got_subcommand("arm")) return sim_arm_command(a.arm);
+  return kExitUsage;
+}
+
+}  // namespace neopipe::apps
