@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "apps/cli_support.hpp"
+#include "apps/sim_render_command.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::apps {
@@ -55,6 +56,41 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
   world->add_option("--seed", a.world.seed, "Random seed: the same seed gives the same world")->capture_default_str();
   world->add_option("--out", a.world.out, "World file to write (YAML)")->required()->type_name("world.yaml");
 
+  CLI::App* render = sim->add_subcommand("render", "Render one camera frame of a world (PNG), with the truth");
+  add_sim_camera_options(*render, a.render.cam);
+  render->add_option("--pose", a.render.pose, "Onboard camera pose x,y,theta (mm, mm, degrees; default: the centre)")
+      ->type_name("X,Y,THETA");
+  render->add_option("--out", a.render.cam.out, "Image to write")->required()->type_name("frame.png");
+  render->add_option("--truth", a.render.cam.truth, "CSV id,u,v: where each visible marble's centre projects (px)")
+      ->type_name("truth.csv");
+  render
+      ->add_option("--camera-out", a.render.camera_out,
+                   "The camera's true intrinsics and pose (OpenCV FileStorage YAML), to check a calibration")
+      ->type_name("camera.yml");
+  render->footer("Pixel coordinates: (0,0) is the centre of the top-left pixel, as in OpenCV.");
+
+  CLI::App* video = sim->add_subcommand(
+      "video", "Render a video: the onboard camera along a path, or the global camera over moving marbles");
+  add_sim_camera_options(*video, a.video.cam);
+  video->add_option("--path", a.video.path, "Onboard: CSV with header x,y,theta (mm, mm, degrees), one pose per row")
+      ->type_name("path.csv");
+  video->add_option("--steps", a.video.steps, "Onboard: frames from one path pose to the next")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  video->add_option("--frames", a.video.frames, "Global: frames in the clip")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  video
+      ->add_option("--speed", a.video.speed,
+                   "Global: marble speed, mm/s (each its own direction, bouncing at the edges)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  video->add_option("--fps", a.video.fps, "Frame rate")->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+  video->add_option("--out", a.video.cam.out, "Video to write (.mp4, .avi, .mkv)")->required()->type_name("clip.mp4");
+  video->add_option("--truth", a.video.cam.truth, "CSV frame,id,u,v: projected marble centres per frame")
+      ->type_name("truth.csv");
+  video->add_flag("-q,--quiet", a.video.quiet, "No progress bar");
+
   CLI::App* arm =
       sim->add_subcommand("arm", "Drive the SCARA arm through tool-frame moves; report commanded vs actual poses");
   add_sim_arm_options(*arm, a.arm);
@@ -63,6 +99,8 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
 
 int sim_command(const CLI::App& sim, const SimArgs& a) {
   if (sim.got_subcommand("world")) return world_command(a.world);
+  if (sim.got_subcommand("render")) return sim_render_command(a.render);
+  if (sim.got_subcommand("video")) return sim_video_command(a.video);
   if (sim.got_subcommand("arm")) return sim_arm_command(a.arm);
   return kExitUsage;
 }

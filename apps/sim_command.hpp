@@ -17,8 +17,39 @@ struct SimWorldArgs {
   std::string out;
 };
 
+/// What `sim render` and `sim video` share: the world, the camera and the image model.
+struct SimCameraArgs {
+  std::string world;
+  std::string camera = "global";
+  std::string resolution = "1280x960";  ///< global camera
+  double noise = 2.0;
+  double blur = 0.7;
+  double gradient = 0.15;
+  std::uint64_t seed = 1;
+  std::string out;
+  std::string truth;
+};
+
+struct SimRenderArgs {
+  SimCameraArgs cam;
+  std::string pose;  ///< onboard: x,y,theta (mm, mm, degrees); default the workspace centre
+  std::string camera_out;
+};
+
+struct SimVideoArgs {
+  SimCameraArgs cam;
+  std::string path;   ///< onboard: CSV x,y,theta
+  int steps = 1;      ///< frames from one path row to the next
+  int frames = 150;   ///< global: length of the clip
+  double speed = 20;  ///< global: marble speed, mm/s
+  double fps = 30;
+  bool quiet = false;
+};
+
 struct SimArgs {
   SimWorldArgs world;
+  SimRenderArgs render;
+  SimVideoArgs video;
   SimArmArgs arm;
 };
 

@@ -65,13 +65,13 @@ class Reader {
     throw WorldError(fmt::format("{}:{}:{}: {}", path_, m.line + 1, m.column + 1, why));
   }
   double number(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsScalar()) fail(n, "'" + what + "' must be a number");
+    if (!n.IsScalar()) fail(n, what + ": expected a number");
     try {
       const double v = n.as<double>();
-      if (!std::isfinite(v)) fail(n, "'" + what + "' must be a finite number");
+      if (!std::isfinite(v)) fail(n, what + ": expected a finite number");
       return v;
     } catch (const YAML::Exception&) {
-      fail(n, "'" + what + "' must be a number, not '" + n.Scalar() + "'");
+      fail(n, what + ": '" + n.Scalar() + "' is not a number");
     }
   }
   Eigen::Vector2d pair(const YAML::Node& n, const std::string& what) const {

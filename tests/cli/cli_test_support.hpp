@@ -1,0 +1,114 @@
+#pragma once
+// Running the neopipe binary from the command-line tests: separate stdout and stderr, a timeout,
+// exit code or signal.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char** environ;
+
+namespace neopipe::cli_testing {
+namespace fs = std::filesystem;
+
+constexpr int kTimeoutSeconds = 60;
+
+struct RunResult {
+  bool timed_out = false;
+  bool signaled = false;
+  int signal = 0;
+  int exit_code = -1;
+  std::string out;  ///< stdout
+  std::string err;  ///< stderr
+};
+
+inline std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+inline void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  f << text;
+}
+
+inline std::string describe(const std::vector<std::string>& args) {
+  std::string s = "neopipe";
+  for (const auto& a : args) s += " " + a;
+  return s;
+}
+
+/// Runs NEOPIPE_BINARY with `args`, stdin from /dev/null, stdout and stderr captured separately
+/// (through files, so a chatty child never blocks on a full pipe). Kills it after kTimeoutSeconds.
+inline RunResult run_neopipe(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const fs::path capture =
+      fs::temp_directory_path() / ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  const std::string out_path = capture.string() + ".out";
+  const std::string err_path = capture.string() + ".err";
+
+  std::vector<std::string> argv_s{NEOPIPE_BINARY};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  RunResult r;
+  if (rc != 0) {
+    ADD_FAILURE() << "posix_spawn(" << argv[0] << ") failed: " << std::strerror(rc);
+    return r;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
+  int status = 0;
+  for (;;) {
+    const pid_t w = waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 && errno != EINTR) {
+      ADD_FAILURE() << "waitpid failed: " << std::strerror(errno);
+      return r;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) {
+    r.signaled = true;
+    r.signal = WTERMSIG(status);
+  }
+  r.out = slurp(out_path);
+  r.err = slurp(err_path);
+  fs::remove(out_path);
+  fs::remove(err_path);
+  EXPECT_FALSE(r.timed_out) << describe(args) << ": killed after " << kTimeoutSeconds << " s";
+  return r;
+}
+
+}  // namespace neopipe::cli_testing
