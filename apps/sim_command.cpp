@@ -67,7 +67,24 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
       ->add_option("--camera-out", a.render.camera_out,
                    "The camera's true intrinsics and pose (OpenCV FileStorage YAML), to check a calibration")
       ->type_name("camera.yml");
-  render->footer("Pixel coordinates: (0,0) is the centre of the top-left pixel, as in OpenCV.");
+  render->add_option("--target", a.render.target, "Render a calibration target instead of the marbles")
+      ->check(CLI::IsMember({"dots", "chessboard"}))
+      ->type_name("dots|chessboard");
+  render->add_option("--target-grid", a.render.target_grid, "Dots per row x rows, or squares (default 11x8 / 10x7)")
+      ->type_name("CxR");
+  render->add_option("--pitch", a.render.pitch, "Dot spacing or square side, mm")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  render->add_option("--dot-diameter", a.render.dot_diameter, "Dot diameter, mm")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  render
+      ->add_option("--target-pose", a.render.target_pose,
+                   "Target origin x,y,z (mm), turn theta, tilts about its axes (degrees; default 40,40,0,0,0,0)")
+      ->type_name("X,Y,Z,THETA[,TX,TY]");
+  render->footer(
+      "With --target, --truth lists the dot centres or inner chessboard corners (id = row-major index).\n"
+      "Pixel coordinates: (0,0) is the centre of the top-left pixel, as in OpenCV.");
 
   CLI::App* video = sim->add_subcommand(
       "video", "Render a video: the onboard camera along a path, or the global camera over moving marbles");

@@ -34,6 +34,11 @@ struct SimRenderArgs {
   SimCameraArgs cam;
   std::string pose;  ///< onboard: x,y,theta (mm, mm, degrees); default the workspace centre
   std::string camera_out;
+  std::string target;       ///< "", dots or chessboard
+  std::string target_grid;  ///< CxR: dots, or squares of a chessboard
+  double pitch = 20;        ///< mm
+  double dot_diameter = 8;  ///< mm
+  std::string target_pose;  ///< x,y,z,theta[,tilt_x,tilt_y]
 };
 
 struct SimVideoArgs {

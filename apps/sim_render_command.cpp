@@ -18,6 +18,7 @@
 #include "sim/cameras.hpp"
 #include "sim/marble_renderer.hpp"
 #include "sim/random.hpp"
+#include "sim/target_renderer.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::apps {
@@ -34,14 +35,14 @@ sim::ImageModel image_model(const SimCameraArgs& a) {
   return m;
 }
 
-cv::Size parse_resolution(const std::string& text) {
+cv::Size parse_resolution(const std::string& text, const std::string& option = "--resolution", int least = 16) {
   int w = 0;
   int h = 0;
   char x = 0;
   std::istringstream in(text);
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof() || w < 16 || h < 16 || w > 8192 ||
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof() || w < least || h < least || w > 8192 ||
       h > 8192) {
-    throw UsageError{"--resolution " + text + ": expected WxH pixels (16..8192), e.g. 1280x960"};
+    throw UsageError{fmt::format("{} {}: expected WxH, each {}..8192", option, text, least)};
   }
   return {w, h};
 }
@@ -147,6 +148,32 @@ void write_image(const std::string& path, const cv::Mat& image) {
   if (!ok) throw std::runtime_error(path + ": cannot write an image there (use .png, .jpg, .tif or .bmp)");
 }
 
+std::pair<sim::CalibrationTarget, sim::TargetPose> parse_target(const SimRenderArgs& a) {
+  sim::CalibrationTarget t;
+  t.kind = a.target == "dots" ? sim::TargetKind::dots : sim::TargetKind::chessboard;
+  t.cols = t.kind == sim::TargetKind::dots ? 11 : 10;
+  t.rows = t.kind == sim::TargetKind::dots ? 8 : 7;
+  if (!a.target_grid.empty()) {
+    const cv::Size g = parse_resolution(a.target_grid, "--target-grid", 2);
+    t.cols = g.width;
+    t.rows = g.height;
+  }
+  t.pitch = a.pitch;
+  t.dot_diameter = a.dot_diameter;
+  if (t.kind == sim::TargetKind::dots && !(t.dot_diameter < t.pitch)) {
+    throw UsageError{"--dot-diameter must be smaller than --pitch, or the dots touch"};
+  }
+  std::vector<double> p{40, 40, 0, 0, 0, 0};
+  if (!a.target_pose.empty()) {
+    const auto v = numbers(a.target_pose);
+    if (v.size() != 4 && v.size() != 6) {
+      throw UsageError{"--target-pose '" + a.target_pose + "': expected x,y,z,theta or x,y,z,theta,tilt_x,tilt_y"};
+    }
+    std::copy(v.begin(), v.end(), p.begin());
+  }
+  return {t, sim::target_pose(p[0], p[1], p[2], p[3], p[4], p[5])};
+}
+
 }  // namespace
 
 void add_sim_camera_options(CLI::App& cmd, SimCameraArgs& a) {
@@ -181,8 +208,18 @@ int sim_render_command(const SimRenderArgs& a) {
     camera = sim::make_onboard_camera(pose);
   }
   const sim::MarbleRenderer renderer(image_model(a.cam), camera->size());
-  const cv::Mat frame = renderer.render(world.objects, world.marble_diameter, *camera, 0);
-  const auto truth = sim::visible_marbles(world.objects, *camera);
+  cv::Mat frame;
+  std::vector<sim::ProjectedMarble> truth;
+  if (a.target.empty()) {
+    frame = renderer.render(world.objects, world.marble_diameter, *camera, 0);
+    truth = sim::visible_marbles(world.objects, *camera);
+  } else {
+    const auto [target, pose] = parse_target(a);
+    frame = sim::render_target(target, pose, *camera, renderer);
+    const auto points = sim::projected_target_points(target, pose, *camera);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      truth.push_back({static_cast<int>(i), points[i].x(), points[i].y()});
+  }
   write_image(a.cam.out, frame);
   if (!a.cam.truth.empty()) {
     std::ofstream out(a.cam.truth);
@@ -190,8 +227,11 @@ int sim_render_command(const SimRenderArgs& a) {
     write_truth_rows(out, truth, -1);
   }
   if (!a.camera_out.empty()) write_camera(*camera, a.camera_out);
-  std::cerr << fmt::format("neopipe sim render: {} camera, {}x{}, {} of {} marbles in view -> {}\n", a.cam.camera,
-                           frame.cols, frame.rows, truth.size(), world.objects.size(), a.cam.out);
+  std::cerr << fmt::format("neopipe sim render: {} camera, {}x{}, {} -> {}\n", a.cam.camera, frame.cols, frame.rows,
+                           a.target.empty()
+                               ? fmt::format("{} of {} marbles in view", truth.size(), world.objects.size())
+                               : fmt::format("{} target, {} points", a.target, truth.size()),
+                           a.cam.out);
   return kExitOk;
 }
 

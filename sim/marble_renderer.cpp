@@ -177,6 +177,16 @@ cv::Mat MarbleRenderer::render(std::span<const Eigen::Vector2d> centres, double 
   return finish(excess, frame);
 }
 
+cv::Mat MarbleRenderer::expose(const cv::Mat& light, std::int64_t frame) const {
+  if (light.size() != size_ || light.type() != CV_32F)
+    throw std::invalid_argument("light image of the wrong size or type");
+  cv::Mat excess = light - model_.background;
+  if (model_.blur_sigma > 0) {
+    cv::GaussianBlur(excess, excess, cv::Size(0, 0), model_.blur_sigma, model_.blur_sigma, cv::BORDER_REPLICATE);
+  }
+  return finish(excess, frame);
+}
+
 std::vector<ProjectedMarble> visible_marbles(std::span<const Eigen::Vector2d> centres, const PinholeCamera& camera) {
   std::vector<ProjectedMarble> out;
   const cv::Size s = camera.size();

@@ -35,6 +35,10 @@ class MarbleRenderer {
   [[nodiscard]] cv::Mat render(std::span<const Eigen::Vector2d> centres, double diameter, const PinholeCamera& camera,
                                std::int64_t frame) const;
 
+  /// Any scene's light (CV_32F gray levels before illumination, this renderer's size) through the
+  /// same blur, illumination and noise: how calibration targets are exposed.
+  [[nodiscard]] cv::Mat expose(const cv::Mat& light, std::int64_t frame) const;
+
   [[nodiscard]] const ImageModel& model() const { return model_; }
 
  private:

@@ -1,0 +1,50 @@
+#pragma once
+// Calibration targets as the global camera sees them: a grid of bright dots on a dark board, or a
+// chessboard on white paper, at any pose in space, with the same lens, light, blur and noise as the
+// marbles. Rendered by tracing each pixel corner back to the target's plane and area-sampling the
+// pixels an edge crosses.
+
+#include <Eigen/Core>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "sim/camera.hpp"
+#include "sim/marble_renderer.hpp"
+
+namespace neopipe::sim {
+
+enum class TargetKind { dots, chessboard };
+
+struct CalibrationTarget {
+  TargetKind kind = TargetKind::chessboard;
+  int cols = 9;             ///< dots per row, or squares per row of a chessboard
+  int rows = 6;             ///< dot rows, or squares per column
+  double pitch = 20;        ///< mm between dot centres, or a square's side
+  double dot_diameter = 8;  ///< mm (dots only)
+};
+
+/// Where the target lies: target point (s, t, 0) (mm, s along its rows, t along its columns, from
+/// the first dot or the board's first corner) is at world rotation * (s, t, 0) + translation.
+struct TargetPose {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+
+/// A pose from the plane's terms: the target's origin at (x, y, z) mm, turned theta degrees about
+/// the vertical, then tipped tilt_x degrees about its own s axis and tilt_y about its t axis.
+TargetPose target_pose(double x, double y, double z, double theta_deg, double tilt_x_deg = 0, double tilt_y_deg = 0);
+
+/// The target's feature points in its own plane, row by row: dot centres, or a chessboard's inner
+/// corners ((cols - 1) x (rows - 1), as cv::findChessboardCorners orders them for a board seen
+/// upright).
+std::vector<Eigen::Vector2d> target_points(const CalibrationTarget& target);
+
+/// Those points projected into the image (px), in the same order.
+std::vector<Eigen::Vector2d> projected_target_points(const CalibrationTarget& target, const TargetPose& pose,
+                                                     const PinholeCamera& camera);
+
+/// One 8-bit frame of the target on the workspace, exposed by `renderer` (its model and size).
+cv::Mat render_target(const CalibrationTarget& target, const TargetPose& pose, const PinholeCamera& camera,
+                      const MarbleRenderer& renderer, std::int64_t frame = 0);
+
+}  // namespace neopipe::sim
