@@ -99,7 +99,7 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
       ->capture_default_str();
   video
       ->add_option("--speed", a.video.speed,
-                   "Global: marble speed, mm/s (each its own direction, bouncing at the edges)")
+                   "Global: marble speed, mm/s (random headings; marbles bounce off the edges and each other)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   video->add_option("--fps", a.video.fps, "Frame rate")->check(CLI::Range(1.0, 1000.0))->capture_default_str();

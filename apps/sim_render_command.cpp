@@ -17,7 +17,7 @@
 #include "apps/progress.hpp"
 #include "sim/cameras.hpp"
 #include "sim/marble_renderer.hpp"
-#include "sim/random.hpp"
+#include "sim/rolling_marbles.hpp"
 #include "sim/target_renderer.hpp"
 #include "sim/world.hpp"
 
@@ -259,16 +259,7 @@ int sim_video_command(const SimVideoArgs& a) {
   const sim::PinholeCamera fixed = onboard ? sim::make_onboard_camera(poses.front()) : global_camera(world, a.cam);
   const sim::MarbleRenderer renderer(image_model(a.cam), fixed.size());
 
-  // Global camera: every marble rolls at --speed in its own random direction and bounces off the
-  // workspace's edges; marbles pass through one another (the clip is for exercising the engine).
-  std::vector<Eigen::Vector2d> marbles = world.objects;
-  std::vector<Eigen::Vector2d> velocity;
-  sim::Random rng(a.cam.seed ^ 0x6D6F7665ULL);
-  for (std::size_t i = 0; i < marbles.size(); ++i) {
-    const double heading = rng.uniform(0, 2 * std::numbers::pi);
-    velocity.emplace_back(a.speed * std::cos(heading), a.speed * std::sin(heading));
-  }
-  const double r = world.marble_diameter / 2;
+  sim::RollingMarbles rolling(world, onboard ? 0.0 : a.speed, a.cam.seed);
 
   const std::string ext = std::filesystem::path(a.cam.out).extension().string();
   const int fourcc =
@@ -286,22 +277,12 @@ int sim_video_command(const SimVideoArgs& a) {
   cv::Mat bgr;
   for (std::int64_t f = 0; f < frames; ++f) {
     const sim::PinholeCamera camera = onboard ? sim::make_onboard_camera(poses[static_cast<std::size_t>(f)]) : fixed;
+    const auto& marbles = rolling.positions();
     const cv::Mat frame = renderer.render(marbles, world.marble_diameter, camera, f);
     cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
     writer.write(bgr);
     if (truth.is_open()) write_truth_rows(truth, sim::visible_marbles(marbles, camera), f);
-    if (!onboard) {
-      for (std::size_t i = 0; i < marbles.size(); ++i) {
-        marbles[i] += velocity[i] / a.fps;
-        for (int k = 0; k < 2; ++k) {
-          const double hi = world.size[k] - r;
-          if (marbles[i][k] < r || marbles[i][k] > hi) {
-            marbles[i][k] = marbles[i][k] < r ? 2 * r - marbles[i][k] : 2 * hi - marbles[i][k];
-            velocity[i][k] = -velocity[i][k];
-          }
-        }
-      }
-    }
+    rolling.step(1 / a.fps);
     bar.update(f + 1);
   }
   bar.clear();

@@ -22,6 +22,21 @@ class NeighbourGrid {
 
   void insert(const Eigen::Vector2d& p, std::size_t id) { cells_[index(col(p.x()), row(p.y()))].push_back({p, id}); }
 
+  /// Calls f(id) for every inserted point strictly closer than d to p (d <= cell), as inserted.
+  /// Positions are those at insertion.
+  template <class F>
+  void for_each_within(const Eigen::Vector2d& p, double d, F&& f) const {
+    const int c0 = col(p.x());
+    const int r0 = row(p.y());
+    for (int r = std::max(0, r0 - 1); r <= std::min(rows_ - 1, r0 + 1); ++r) {
+      for (int c = std::max(0, c0 - 1); c <= std::min(cols_ - 1, c0 + 1); ++c) {
+        for (const auto& e : cells_[index(c, r)]) {
+          if ((e.p - p).squaredNorm() < d * d) f(e.id);
+        }
+      }
+    }
+  }
+
   /// Some inserted point strictly closer than d to p (d <= cell), if any.
   [[nodiscard]] std::optional<std::size_t> any_within(const Eigen::Vector2d& p, double d) const {
     const int c0 = col(p.x());
