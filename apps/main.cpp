@@ -26,6 +26,17 @@ int guarded(const std::string& name, const std::function<int()>& body) {
   }
 }
 
+// "sim arm" for `neopipe sim arm ...`: the subcommands given, outermost first.
+std::string command_path(const CLI::App& app) {
+  std::string path;
+  for (const CLI::App* at = &app;;) {
+    const auto subs = at->get_subcommands();
+    if (subs.empty()) return path;
+    at = subs.front();
+    path += (path.empty() ? "" : " ") + at->get_name();
+  }
+}
+
 int run_main(int argc, char** argv) {
   CLI::App app("neopipe: a PIPE-style real-time image pipeline engine", "neopipe");
   app.require_subcommand(1);
@@ -55,10 +66,8 @@ int run_main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    const auto subs = app.get_subcommands();
-    print_error(
-        subs.empty() ? std::string("") : subs.front()->get_name(),
-        std::string(e.what()) + " (see neopipe" + (subs.empty() ? "" : " " + subs.front()->get_name()) + " --help)");
+    const std::string name = command_path(app);
+    print_error(name, std::string(e.what()) + " (see neopipe" + (name.empty() ? "" : " " + name) + " --help)");
     return kExitUsage;
   }
   if (run->parsed()) return guarded("run", [&] { return run_command(run_args); });
