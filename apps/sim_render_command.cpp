@@ -136,6 +136,14 @@ void write_camera(const sim::PinholeCamera& camera, const std::string& path) {
     t.at<double>(i) = camera.translation()(i);
   }
   fs << "world_to_camera_rotation" << r << "world_to_camera_translation" << t;
+  // The plane z = 0 seen through the lens-free camera: world (X, Y, 1) ~ H (u, v, 1) for undistorted
+  // pixels, H = (K [r1 r2 t])^-1 scaled so H(2,2) = 1.
+  cv::Mat krt = camera.camera_matrix() * (cv::Mat_<double>(3, 3) << r.at<double>(0, 0), r.at<double>(0, 1),
+                                          t.at<double>(0), r.at<double>(1, 0), r.at<double>(1, 1), t.at<double>(1),
+                                          r.at<double>(2, 0), r.at<double>(2, 1), t.at<double>(2));
+  cv::Mat h = krt.inv();
+  h /= h.at<double>(2, 2);
+  fs << "undistorted_image_to_world" << h;
 }
 
 void write_image(const std::string& path, const cv::Mat& image) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -77,6 +78,22 @@ TEST_F(SimCli, NoiselessGlobalFrameGivesEveryMarbleOnItsTruth) {
   cv::Mat k;
   fs["camera_matrix"] >> k;
   EXPECT_EQ(k.size(), cv::Size(3, 3));
+  // The homography takes the undistorted image of a marble back to its place on the workspace.
+  cv::Mat h;
+  cv::Mat d;
+  fs["undistorted_image_to_world"] >> h;
+  fs["distortion_coefficients"] >> d;
+  ASSERT_EQ(h.size(), cv::Size(3, 3));
+  const std::string world = slurp(file("w.yaml"));
+  const auto first = world.find("  - [");
+  const double x = std::stod(world.substr(first + 5));
+  const double y = std::stod(world.substr(world.find(", ", first) + 2));
+  std::vector<cv::Point2d> px{{truth[0][1], truth[0][2]}};
+  std::vector<cv::Point2d> und;
+  cv::undistortPoints(px, und, k, d, cv::noArray(), k);
+  cv::Mat p = h * (cv::Mat_<double>(3, 1) << und[0].x, und[0].y, 1);
+  EXPECT_NEAR(p.at<double>(0) / p.at<double>(2), x, 1e-3);
+  EXPECT_NEAR(p.at<double>(1) / p.at<double>(2), y, 1e-3);
 }
 
 TEST_F(SimCli, SameSeedSameFiles) {
