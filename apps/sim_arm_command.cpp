@@ -30,7 +30,7 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
     std::istringstream field(text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
     double v = 0;
     if (!(field >> v) || !(field >> std::ws).eof() || !std::isfinite(v)) {
-      throw UsageError{option + " " + text + ": expected " + form};
+      throw UsageError{fmt::format("{} {}: expected {}", option, text, form)};
     }
     values.push_back(v);
     if (comma == std::string::npos) break;
@@ -70,6 +70,7 @@ sim::SimulatedArm make_arm(const SimArmArgs& a, const sim::World& world) {
   const sim::ScaraGeometry geometry = arm_geometry(a, world.size);
   const sim::Pose2 start = start_pose(a, world.size);
   try {
+    // NOLINTNEXTLINE(modernize-return-braced-init-list): the constructor is explicit
     return sim::SimulatedArm(geometry, motion_errors(a.errors), a.seed, start);
   } catch (const sim::ReachError& e) {
     throw sim::ReachError(fmt::format("--start {}: {}", a.start.empty() ? "(workspace centre)" : a.start, e.what()));
@@ -78,7 +79,7 @@ sim::SimulatedArm make_arm(const SimArmArgs& a, const sim::World& world) {
 
 /// A sigma coefficient: a finite number >= 0 (CLI::NonNegativeNumber would print the whole of DBL_MAX).
 CLI::Validator non_negative() {
-  return CLI::Validator(
+  return CLI::Validator(  // NOLINT(modernize-return-braced-init-list): two constructors take these
       [](const std::string& text) {
         double v = 0;
         if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) && v >= 0) return std::string();

@@ -22,6 +22,12 @@ struct SimCameraArgs {
   std::string world;
   std::string camera = "global";
   std::string resolution = "1280x960";  ///< global camera
+  double distance = 1000;               ///< global: mm from the workspace centre
+  double tilt = 4;                      ///< global: degrees from vertical
+  double tilt_azimuth = 30;             ///< global: direction of the lean, degrees from East
+  double roll = 2;                      ///< global: degrees about the optical axis
+  std::string distortion;               ///< k1,k2,p1,p2,k3; empty: the camera's default
+  double window = 50;                   ///< onboard: view window side a, mm
   double noise = 2.0;
   double blur = 0.7;
   double gradient = 0.15;

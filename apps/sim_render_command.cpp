@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -106,10 +107,31 @@ std::vector<sim::Pose2> read_path(const std::string& path, const sim::World& wor
   return out;
 }
 
+std::array<double, 5> parse_distortion(const std::string& text) {
+  const auto v = numbers(text);
+  if (v.empty() || v.size() > 5)
+    throw UsageError{"--distortion '" + text + "': expected up to five numbers k1,k2,p1,p2,k3"};
+  std::array<double, 5> d{};
+  std::copy(v.begin(), v.end(), d.begin());
+  return d;
+}
+
 sim::PinholeCamera global_camera(const sim::World& w, const SimCameraArgs& a) {
   sim::GlobalCameraConfig c;
   c.resolution = parse_resolution(a.resolution);
+  c.distance = a.distance;
+  c.tilt_deg = a.tilt;
+  c.tilt_azimuth_deg = a.tilt_azimuth;
+  c.roll_deg = a.roll;
+  if (!a.distortion.empty()) c.distortion = parse_distortion(a.distortion);
   return sim::make_global_camera(w.size, c);
+}
+
+sim::OnboardCameraConfig onboard_config(const SimCameraArgs& a) {
+  sim::OnboardCameraConfig c;
+  c.window_mm = a.window;
+  if (!a.distortion.empty()) c.distortion = parse_distortion(a.distortion);
+  return c;
 }
 
 void write_truth_header(std::ofstream& out, const std::string& path, bool with_frame) {
@@ -190,6 +212,20 @@ void add_sim_camera_options(CLI::App& cmd, SimCameraArgs& a) {
       ->type_name("global|onboard")
       ->capture_default_str();
   cmd.add_option("--resolution", a.resolution, "Global camera image size")->type_name("WxH")->capture_default_str();
+  cmd.add_option("--distance", a.distance, "Global camera: distance from the workspace centre, mm")
+      ->check(CLI::Range(10.0, 1e6))
+      ->capture_default_str();
+  cmd.add_option("--tilt", a.tilt, "Global camera: optical axis from vertical, degrees")
+      ->check(CLI::Range(0.0, 60.0))
+      ->capture_default_str();
+  cmd.add_option("--tilt-azimuth", a.tilt_azimuth, "Global camera: direction it leans towards, degrees from East")
+      ->capture_default_str();
+  cmd.add_option("--roll", a.roll, "Global camera: turn about the optical axis, degrees")->capture_default_str();
+  cmd.add_option("--distortion", a.distortion, "Lens k1,k2,p1,p2,k3 (OpenCV's model; default: the camera's own)")
+      ->type_name("K1,K2,P1,P2,K3");
+  cmd.add_option("--window", a.window, "Onboard camera: view window side a, mm")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
   cmd.add_option("--noise", a.noise, "Sensor noise sigma, gray levels (0: off)")
       ->check(CLI::Range(0.0, 64.0))
       ->capture_default_str();
@@ -213,7 +249,7 @@ int sim_render_command(const SimRenderArgs& a) {
     const sim::Pose2 pose =
         a.pose.empty() ? sim::Pose2{world.size.x() / 2, world.size.y() / 2, 0} : parse_pose(a.pose, "--pose");
     check_on_workspace(world, pose, "--pose " + a.pose);
-    camera = sim::make_onboard_camera(pose);
+    camera = sim::make_onboard_camera(pose, onboard_config(a.cam));
   }
   const sim::MarbleRenderer renderer(image_model(a.cam), camera->size());
   cv::Mat frame;
@@ -264,7 +300,8 @@ int sim_video_command(const SimVideoArgs& a) {
     throw UsageError{"--path is for the onboard camera; the global camera films moving marbles (--frames, --speed)"};
   }
   const auto frames = onboard ? static_cast<std::int64_t>(poses.size()) : std::int64_t{a.frames};
-  const sim::PinholeCamera fixed = onboard ? sim::make_onboard_camera(poses.front()) : global_camera(world, a.cam);
+  const sim::PinholeCamera fixed =
+      onboard ? sim::make_onboard_camera(poses.front(), onboard_config(a.cam)) : global_camera(world, a.cam);
   const sim::MarbleRenderer renderer(image_model(a.cam), fixed.size());
 
   sim::RollingMarbles rolling(world, onboard ? 0.0 : a.speed, a.cam.seed);
@@ -284,7 +321,8 @@ int sim_video_command(const SimVideoArgs& a) {
   ProgressBar bar("neopipe sim video", frames, !a.quiet);
   cv::Mat bgr;
   for (std::int64_t f = 0; f < frames; ++f) {
-    const sim::PinholeCamera camera = onboard ? sim::make_onboard_camera(poses[static_cast<std::size_t>(f)]) : fixed;
+    const sim::PinholeCamera camera =
+        onboard ? sim::make_onboard_camera(poses[static_cast<std::size_t>(f)], onboard_config(a.cam)) : fixed;
     const auto& marbles = rolling.positions();
     const cv::Mat frame = renderer.render(marbles, world.marble_diameter, camera, f);
     cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);

@@ -2,12 +2,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <utility>
 
 namespace neopipe::sim {
 
-PinholeCamera::PinholeCamera(const Intrinsics& intrinsics, const Eigen::Matrix3d& rotation,
-                             const Eigen::Vector3d& translation)
-    : k_(intrinsics), r_(rotation), t_(translation) {}
+PinholeCamera::PinholeCamera(Intrinsics intrinsics, Eigen::Matrix3d rotation, Eigen::Vector3d translation)
+    : k_(intrinsics), r_(std::move(rotation)), t_(std::move(translation)) {}
 
 PinholeCamera PinholeCamera::looking_down(const Intrinsics& intrinsics, const Pose2& pose, double height) {
   const double c = std::cos(pose.theta);
@@ -55,7 +55,7 @@ Eigen::Matrix2d PinholeCamera::plane_jacobian(const Eigen::Vector2d& p) const {
 }
 
 Eigen::Vector2d PinholeCamera::undistort(const Eigen::Vector2d& pixel) const {
-  const Eigen::Vector2d target((pixel.x() - k_.cx) / k_.fx, (pixel.y() - k_.cy) / k_.fy);
+  Eigen::Vector2d target((pixel.x() - k_.cx) / k_.fx, (pixel.y() - k_.cy) / k_.fy);
   const auto& d = k_.distortion;
   if (d[0] == 0 && d[1] == 0 && d[2] == 0 && d[3] == 0 && d[4] == 0) return target;
   // Newton on distort(n) = target, with a numeric Jacobian: converges in a few steps for the mild
@@ -90,12 +90,14 @@ std::optional<Eigen::Vector2d> PinholeCamera::plane_point(const Eigen::Vector2d&
 }
 
 cv::Mat PinholeCamera::camera_matrix() const {
-  return (cv::Mat_<double>(3, 3) << k_.fx, 0, k_.cx, 0, k_.fy, k_.cy, 0, 0, 1);
+  cv::Mat m = (cv::Mat_<double>(3, 3) << k_.fx, 0, k_.cx, 0, k_.fy, k_.cy, 0, 0, 1);
+  return m;
 }
 
 cv::Mat PinholeCamera::distortion_coefficients() const {
   const auto& d = k_.distortion;
-  return (cv::Mat_<double>(1, 5) << d[0], d[1], d[2], d[3], d[4]);
+  cv::Mat m = (cv::Mat_<double>(1, 5) << d[0], d[1], d[2], d[3], d[4]);
+  return m;
 }
 
 }  // namespace neopipe::sim

@@ -25,7 +25,7 @@ class PinholeCamera {
  public:
   /// `rotation` and `translation` map world to camera coordinates: Xc = R Xw + t; the camera looks
   /// along its +z, image x to the right, image y down.
-  PinholeCamera(const Intrinsics& intrinsics, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& translation);
+  PinholeCamera(Intrinsics intrinsics, Eigen::Matrix3d rotation, Eigen::Vector3d translation);
 
   /// A camera `height` mm above the plane looking straight down, centred on `pose`, image x along the
   /// pose's x axis and image up along its y axis.

@@ -150,8 +150,8 @@ cv::Mat MarbleRenderer::finish(const cv::Mat& excess, std::int64_t frame) const 
   const auto sigma = static_cast<float>(model_.noise_sigma);
   auto* l = light.ptr<float>();
   for (int y = 0; y < size_.height; ++y) {
-    const float* e = excess.ptr<float>(y);
-    const float* g = gain_.ptr<float>(y);
+    const auto* e = excess.ptr<float>(y);
+    const auto* g = gain_.ptr<float>(y);
     // Plain arithmetic loops the compiler vectorises; OpenCV's convertTo rounds and saturates.
     if (sigma > 0) {
       const float* n = noise_.row(rows, size_.width).data();

@@ -5,12 +5,13 @@
 namespace neopipe::sim {
 
 PatchBlur::PatchBlur(double sigma)
-    : radius_(static_cast<int>(std::ceil(4 * sigma))), kernel_(static_cast<std::size_t>(2 * radius_ + 1)) {
+    : radius_(static_cast<int>(std::ceil(4 * sigma))), kernel_(2 * static_cast<std::size_t>(radius_) + 1) {
   double sum = 0;
   std::vector<double> k(kernel_.size());
-  for (int i = -radius_; i <= radius_; ++i) {
-    k[static_cast<std::size_t>(i + radius_)] = std::exp(-0.5 * i * i / (sigma * sigma));
-    sum += k[static_cast<std::size_t>(i + radius_)];
+  for (std::size_t j = 0; j < k.size(); ++j) {
+    const double i = static_cast<double>(j) - radius_;  // taps -radius .. radius
+    k[j] = std::exp(-0.5 * i * i / (sigma * sigma));
+    sum += k[j];
   }
   for (std::size_t i = 0; i < k.size(); ++i) kernel_[i] = static_cast<float>(k[i] / sum);
 }
@@ -26,19 +27,19 @@ void PatchBlur::apply(cv::Mat& patch) const {
   cv::Mat across = cv::Mat::zeros(h + 2 * r, w, CV_32F);
   const float* k = kernel_.data();
   for (int y = r; y < h + r; ++y) {  // rows outside the patch are 0 and stay 0
-    const float* in = padded.ptr<float>(y);
-    float* out = across.ptr<float>(y);
+    const auto* in = padded.ptr<float>(y);
+    auto* out = across.ptr<float>(y);
     for (int t = 0; t <= 2 * r; ++t) {
       const float kt = k[t];
       for (int x = 0; x < w; ++x) out[x] += kt * in[x + t];
     }
   }
   for (int y = 0; y < h; ++y) {
-    float* out = patch.ptr<float>(y);
+    auto* out = patch.ptr<float>(y);
     for (int x = 0; x < w; ++x) out[x] = 0;
     for (int t = 0; t <= 2 * r; ++t) {
       const float kt = k[t];
-      const float* in = across.ptr<float>(y + t);
+      const auto* in = across.ptr<float>(y + t);
       for (int x = 0; x < w; ++x) out[x] += kt * in[x];
     }
   }

@@ -67,7 +67,7 @@ class Reader {
   double number(const YAML::Node& n, const std::string& what) const {
     if (!n.IsScalar()) fail(n, what + ": expected a number");
     try {
-      const double v = n.as<double>();
+      const auto v = n.as<double>();
       if (!std::isfinite(v)) fail(n, what + ": expected a finite number");
       return v;
     } catch (const YAML::Exception&) {

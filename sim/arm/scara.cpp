@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace neopipe::sim {
 namespace {
@@ -31,7 +32,7 @@ double nearest_to(double angle, const JointLimits& limits) {
 
 }  // namespace
 
-Scara::Scara(const ScaraGeometry& geometry) : geometry_(geometry) {
+Scara::Scara(ScaraGeometry geometry) : geometry_(std::move(geometry)) {
   const ScaraGeometry& g = geometry_;
   if (!g.base.allFinite()) throw std::invalid_argument("the arm's base position is not finite");
   if (!(std::isfinite(g.l1) && g.l1 > 0 && std::isfinite(g.l2) && g.l2 > 0)) {

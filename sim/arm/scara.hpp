@@ -60,7 +60,7 @@ class Scara {
  public:
   /// Throws std::invalid_argument naming the field when the geometry is not a usable arm (lengths
   /// not positive, a limit range empty or not finite, no elbow angle on the side of `bend`).
-  explicit Scara(const ScaraGeometry& geometry);
+  explicit Scara(ScaraGeometry geometry);
 
   const ScaraGeometry& geometry() const { return geometry_; }
   /// Distances from the base the tool axis can reach within the elbow limits, mm.
