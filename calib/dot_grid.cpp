@@ -1,0 +1,4 @@
+#include "calib/dot_grid.hpp"
+
+// Placeholder: the grid ordering arrives on branch calib-dots.
+namespace neopipe::calib {}
