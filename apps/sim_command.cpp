@@ -70,7 +70,9 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
   render->add_option("--target", a.render.target, "Render a calibration target instead of the marbles")
       ->check(CLI::IsMember({"dots", "chessboard"}))
       ->type_name("dots|chessboard");
-  render->add_option("--target-grid", a.render.target_grid, "Dots per row x rows, or squares (default 11x8 / 10x7)")
+  render
+      ->add_option("--target-grid", a.render.target_grid,
+                   "Dots per row x rows, or a chessboard's inner corners (default 11x8 / 9x6)")
       ->type_name("CxR");
   render->add_option("--pitch", a.render.pitch, "Dot spacing or square side, mm")
       ->check(CLI::PositiveNumber)

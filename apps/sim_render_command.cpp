@@ -181,13 +181,13 @@ void write_image(const std::string& path, const cv::Mat& image) {
 std::pair<sim::CalibrationTarget, sim::TargetPose> parse_target(const SimRenderArgs& a) {
   sim::CalibrationTarget t;
   t.kind = a.target == "dots" ? sim::TargetKind::dots : sim::TargetKind::chessboard;
-  t.cols = t.kind == sim::TargetKind::dots ? 11 : 10;
-  t.rows = t.kind == sim::TargetKind::dots ? 8 : 7;
-  if (!a.target_grid.empty()) {
-    const cv::Size g = parse_resolution(a.target_grid, "--target-grid", 2);
-    t.cols = g.width;
-    t.rows = g.height;
-  }
+  // --target-grid counts dots, or a chessboard's inner corners (OpenCV's pattern size); the board
+  // has one square more each way.
+  cv::Size g = t.kind == sim::TargetKind::dots ? cv::Size(11, 8) : cv::Size(9, 6);
+  if (!a.target_grid.empty()) g = parse_resolution(a.target_grid, "--target-grid", 2);
+  const int squares = t.kind == sim::TargetKind::dots ? 0 : 1;
+  t.cols = g.width + squares;
+  t.rows = g.height + squares;
   t.pitch = a.pitch;
   t.dot_diameter = a.dot_diameter;
   if (t.kind == sim::TargetKind::dots && !(t.dot_diameter < t.pitch)) {

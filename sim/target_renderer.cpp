@@ -18,9 +18,11 @@ struct Shades {
 
 // The light at target point (s, t): board with a margin of one pitch around the pattern.
 double shade(const CalibrationTarget& g, const Shades& sh, double s, double t) {
-  const double lo = -g.pitch;
-  const double hi_s = g.kind == TargetKind::dots ? (g.cols - 1) * g.pitch + g.pitch : (g.cols + 1) * g.pitch;
-  const double hi_t = g.kind == TargetKind::dots ? (g.rows - 1) * g.pitch + g.pitch : (g.rows + 1) * g.pitch;
+  // The board: the pattern and a margin of one pitch all round (for a chessboard, from its first inner
+  // corner, one square of pattern and one of margin).
+  const double lo = g.kind == TargetKind::dots ? -g.pitch : -2 * g.pitch;
+  const double hi_s = g.cols * g.pitch;
+  const double hi_t = g.rows * g.pitch;
   if (s < lo || t < lo || s > hi_s || t > hi_t) return sh.outside;
   if (g.kind == TargetKind::dots) {
     const double i = std::round(s / g.pitch);
@@ -30,6 +32,9 @@ double shade(const CalibrationTarget& g, const Shades& sh, double s, double t) {
     const double dt = t - j * g.pitch;
     return ds * ds + dt * dt < g.dot_diameter * g.dot_diameter / 4 ? sh.mark : sh.board;
   }
+  // The target's origin is its first inner corner: the squares start a pitch before it.
+  s += g.pitch;
+  t += g.pitch;
   if (s < 0 || t < 0 || s >= g.cols * g.pitch || t >= g.rows * g.pitch) return sh.board;  // the white margin
   const auto i = static_cast<long>(std::floor(s / g.pitch));
   const auto j = static_cast<long>(std::floor(t / g.pitch));
@@ -54,9 +59,8 @@ std::vector<Eigen::Vector2d> target_points(const CalibrationTarget& g) {
   const bool dots = g.kind == TargetKind::dots;
   const int cols = dots ? g.cols : g.cols - 1;
   const int rows = dots ? g.rows : g.rows - 1;
-  const double first = dots ? 0 : g.pitch;
   for (int j = 0; j < rows; ++j) {
-    for (int i = 0; i < cols; ++i) out.emplace_back(first + i * g.pitch, first + j * g.pitch);
+    for (int i = 0; i < cols; ++i) out.emplace_back(i * g.pitch, j * g.pitch);
   }
   return out;
 }

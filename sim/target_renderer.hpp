@@ -24,7 +24,7 @@ struct CalibrationTarget {
 };
 
 /// Where the target lies: target point (s, t, 0) (mm, s along its rows, t along its columns, from
-/// the first dot or the board's first corner) is at world rotation * (s, t, 0) + translation.
+/// the first dot or the board's first inner corner) is at world rotation * (s, t, 0) + translation.
 struct TargetPose {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
