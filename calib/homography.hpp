@@ -37,7 +37,9 @@ struct HomographyFit {
 HomographyFit fit_homography_ransac(const Correspondences& points, const RansacOptions& options = {});
 
 /// Levenberg-Marquardt on the 8 free entries of H minimising the sum of squared distances, in the
-/// world plane, between apply(H, pixel) and world. Starts from `initial`.
+/// world plane, between apply(H, pixel) and world. Starts from `initial` and never returns a map
+/// with a larger sum than initial / initial(2,2); the result has H(2,2) = 1. Throws CalibrationError
+/// when initial(2,2) is 0.
 Eigen::Matrix3d refine_homography(const Eigen::Matrix3d& initial, const Correspondences& points);
 
 }  // namespace neopipe::calib
