@@ -7,6 +7,7 @@
 #include <string>
 
 #include "apps/bench_command.hpp"
+#include "apps/calibrate_command.hpp"
 #include "apps/cli_support.hpp"
 #include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
@@ -45,6 +46,8 @@ int run_main(int argc, char** argv) {
   BenchArgs bench_args;
   CLI::App* run = add_run_command(app, run_args);
   CLI::App* bench = add_bench_command(app, bench_args);
+  CalibrateArgs calibrate_args;
+  CLI::App* calibrate = add_calibrate_command(app, calibrate_args);
   SimArgs sim_args;
   CLI::App* sim = add_sim_command(app, sim_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
@@ -53,7 +56,8 @@ int run_main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-') {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
-      print_error("", std::string("unknown command '") + argv[1] + "' (commands: run, bench, sim; see neopipe --help)");
+      print_error("", std::string("unknown command '") + argv[1] +
+                          "' (commands: run, bench, calibrate, sim; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -72,6 +76,10 @@ int run_main(int argc, char** argv) {
   }
   if (run->parsed()) return guarded("run", [&] { return run_command(run_args); });
   if (bench->parsed()) return guarded("bench", [&] { return bench_command(bench_args); });
+  if (calibrate->parsed()) {
+    const std::string name = calibrate->got_subcommand("map") ? "calibrate map" : "calibrate";
+    return guarded(name, [&] { return calibrate_command(*calibrate, calibrate_args); });
+  }
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();
     return guarded("sim " + subs.front()->get_name(), [&] { return sim_command(*sim, sim_args); });

@@ -10,6 +10,7 @@
 
 #include "apps/cli_support.hpp"
 #include "apps/progress.hpp"
+#include "calib/calibration.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/io/annotator.hpp"
@@ -87,6 +88,9 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
   cmd->add_option("--frames-in-flight", a.frames_in_flight, "Frames processed at once (default: 2 x (threads + 2))")
       ->check(CLI::Range(2, 256));
   cmd->add_flag("--moments", a.moments, "Add the second central moments mu20,mu11,mu02 to the table");
+  cmd->add_option("--calib", a.calib,
+                  "Calibration (neopipe calibrate): add X,Y, the weighted centroid on the workspace (mm)")
+      ->type_name("calib.yaml");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress bar and no summary");
   cmd->add_flag("--list-kernels", a.list_kernels, "List the kernels a graph spec can use, and exit");
   return cmd;
@@ -109,6 +113,18 @@ int run_command(const RunArgs& a) {
 
   io::TableOptions table;
   table.moments = a.moments;
+  std::optional<calib::Calibration> calibration;
+  if (!a.calib.empty()) {
+    calibration = calib::load_calibration(a.calib);
+    table.to_world = [&c = *calibration](const std::vector<cv::Point2d>& px) {
+      std::vector<Eigen::Vector2d> in;
+      in.reserve(px.size());
+      for (const auto& p : px) in.emplace_back(p.x, p.y);
+      std::vector<cv::Point2d> out;
+      for (const auto& w : c.to_world(in)) out.emplace_back(w.x(), w.y());
+      return out;
+    };
+  }
   if (!a.format.empty()) {
     table.format = a.format == "jsonl" ? io::TableFormat::jsonl : io::TableFormat::csv;
   } else if (!a.out.empty()) {
@@ -145,6 +161,11 @@ int run_command(const RunArgs& a) {
         *source, std::move(graph), opts,
         [&](const pl::FrameResult& r) {
           const auto& blobs = std::get<pl::BlobList>(r.outputs[*blob_output]);
+          if (calibration && calibration->image_size.area() > 0 && r.input.size() != calibration->image_size) {
+            throw std::runtime_error(fmt::format("{}: made for {}x{} images, but frame {} of {} is {}x{}", a.calib,
+                                                 calibration->image_size.width, calibration->image_size.height, r.index,
+                                                 source->description(), r.input.cols, r.input.rows));
+          }
           writer->write(r.index, blobs);
           if (annotator) annotator->write(r.index, r.input, blobs);
         },

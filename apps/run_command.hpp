@@ -24,6 +24,7 @@ struct RunArgs {
   int threads = 0;
   int frames_in_flight = 0;
   bool moments = false;
+  std::string calib;  ///< calibration file: add X,Y (workspace mm) to every row
   bool quiet = false;
   bool list_kernels = false;
 };

@@ -16,6 +16,7 @@ packages=(
   libgtest-dev libgmock-dev
   libbenchmark-dev       # kernel micro-benchmarks
   ffmpeg                 # OpenCV's video back end and a handy tool for users' videos
+  opencv-doc             # sample images and videos the tests check against (chessboard photos, vtest.avi)
 )
 
 missing=()

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iterator>
 #include <stdexcept>
+#include <utility>
 
 namespace neopipe::pipeline::io {
 
@@ -21,14 +22,14 @@ std::optional<TableFormat> table_format_for(const std::string& path) {
 }
 
 BlobTableWriter::BlobTableWriter(std::ostream& out, TableOptions options)
-    : out_(&out), options_(options), path_("<stdout>") {
+    : out_(&out), options_(std::move(options)), path_("<stdout>") {
   header();
 }
 
 BlobTableWriter::BlobTableWriter(const std::string& path, TableOptions options)
     : file_(std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc)),
       out_(file_.get()),
-      options_(options),
+      options_(std::move(options)),
       path_(path) {
   if (!*file_) throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
   header();
@@ -36,13 +37,21 @@ BlobTableWriter::BlobTableWriter(const std::string& path, TableOptions options)
 
 void BlobTableWriter::header() {
   if (options_.format != TableFormat::csv) return;
-  *out_ << "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy" << (options_.moments ? ",mu20,mu11,mu02" : "") << '\n';
+  *out_ << "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy" << (options_.moments ? ",mu20,mu11,mu02" : "")
+        << (options_.to_world ? ",X,Y" : "") << '\n';
   out_->flush();
 }
 
 void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
   buffer_.clear();
   auto it = std::back_inserter(buffer_);
+  std::vector<cv::Point2d> world;
+  if (options_.to_world) {
+    std::vector<cv::Point2d> centres;
+    centres.reserve(blobs.size());
+    for (const auto& b : blobs) centres.emplace_back(b.wcx, b.wcy);
+    world = options_.to_world(centres);
+  }
   for (size_t i = 0; i < blobs.size(); ++i) {
     const auto& b = blobs[i];
     if (options_.format == TableFormat::csv) {
@@ -50,13 +59,15 @@ void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
       fmt::format_to(it, "{},{},{},{},{},{},{},{},{},{},{}", frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width,
                      b.height, b.wcx, b.wcy);
       if (options_.moments) fmt::format_to(it, ",{},{},{}", b.mu20, b.mu11, b.mu02);
+      if (options_.to_world) fmt::format_to(it, ",{},{}", world[i].x, world[i].y);
       buffer_ += '\n';
     } else {
       fmt::format_to(it,
-                     "{{\"frame\":{},\"blob\":{},\"area\":{},\"cx\":{},\"cy\":{},\"x0\":{},\"y0\":{},\"w\":{},\"h\":{},"
-                     "\"wcx\":{},\"wcy\":{}",
+                     R"({{"frame":{},"blob":{},"area":{},"cx":{},"cy":{},"x0":{},"y0":{},"w":{},"h":{},)"
+                     R"("wcx":{},"wcy":{})",
                      frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy);
-      if (options_.moments) fmt::format_to(it, ",\"mu20\":{},\"mu11\":{},\"mu02\":{}", b.mu20, b.mu11, b.mu02);
+      if (options_.moments) fmt::format_to(it, R"(,"mu20":{},"mu11":{},"mu02":{})", b.mu20, b.mu11, b.mu02);
+      if (options_.to_world) fmt::format_to(it, R"(,"X":{},"Y":{})", world[i].x, world[i].y);
       buffer_ += "}\n";
     }
   }

@@ -1,13 +1,17 @@
 #pragma once
 // The blob table: one row per blob, as CSV (header first) or JSON Lines (one object per blob).
-// Columns: frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy and, when asked, mu20,mu11,mu02. Real numbers are
+// Columns: frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy and, when asked, mu20,mu11,mu02, then, with a
+// calibration, X,Y (workspace mm of wcx,wcy). Real numbers are
 // printed in the shortest form that reads back to the same double, so nothing is lost.
 
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <memory>
+#include <opencv2/core/types.hpp>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "pipeline/value.hpp"
 
@@ -15,9 +19,14 @@ namespace neopipe::pipeline::io {
 
 enum class TableFormat { csv, jsonl };
 
+/// Maps a frame's weighted centroids (px) to the workspace (mm), all at once (a lens model undistorts
+/// a batch faster than point by point).
+using WorldMap = std::function<std::vector<cv::Point2d>(const std::vector<cv::Point2d>&)>;
+
 struct TableOptions {
   TableFormat format = TableFormat::csv;
   bool moments = false;  ///< add the second central moments mu20, mu11, mu02
+  WorldMap to_world;     ///< if set, add X,Y: the weighted centroid on the workspace (mm)
 };
 
 /// csv for ".csv", jsonl for ".jsonl" / ".ndjson"; nullopt otherwise.

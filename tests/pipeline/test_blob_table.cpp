@@ -46,6 +46,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
+io::TableOptions table_options(io::TableFormat format, bool moments) {
+  io::TableOptions o;
+  o.format = format;
+  o.moments = moments;
+  return o;
+}
+
 neopipe::kernels::Blob make_blob(std::int64_t area, int x0, int y0, int w, int h, double cx, double cy, double wcx,
                                  double wcy, double mu20, double mu11, double mu02) {
   neopipe::kernels::Blob b;
@@ -233,9 +240,10 @@ class HoldFirstFrameNode final : public pl::Node {
 // BlobTableWriter
 
 TEST(BlobTableWriter, CsvHeaderExactly) {
-  EXPECT_EQ(write_table({io::TableFormat::csv, false}, {}), "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy\n");
-  EXPECT_EQ(write_table({io::TableFormat::csv, true}, {}), "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy,mu20,mu11,mu02\n");
-  EXPECT_EQ(write_table({io::TableFormat::jsonl, true}, {}), "");  // JSON Lines has no header
+  EXPECT_EQ(write_table(table_options(io::TableFormat::csv, false), {}), "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy\n");
+  EXPECT_EQ(write_table(table_options(io::TableFormat::csv, true), {}),
+            "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy,mu20,mu11,mu02\n");
+  EXPECT_EQ(write_table(table_options(io::TableFormat::jsonl, true), {}), "");  // JSON Lines has no header
 }
 
 TEST(BlobTableWriter, CsvRowsInOrderAndExact) {
@@ -243,7 +251,7 @@ TEST(BlobTableWriter, CsvRowsInOrderAndExact) {
   for (const bool moments : {false, true}) {
     SCOPED_TRACE(moments ? "with moments" : "without moments");
     std::int64_t rows = 0;
-    const std::string text = write_table({io::TableFormat::csv, moments},
+    const std::string text = write_table(table_options(io::TableFormat::csv, moments),
                                          {{3, {blobs[0], blobs[1]}}, {4, {}}, {7, {blobs[2]}}, {8, {blobs[1]}}}, &rows);
     EXPECT_EQ(rows, 4);
     const auto lines = lines_of(text);
@@ -256,7 +264,7 @@ TEST(BlobTableWriter, CsvRowsInOrderAndExact) {
     EXPECT_EQ(text.back(), '\n');
   }
   // A simple row, character for character: integers without decimals, shortest round-trip reals.
-  const auto lines = lines_of(write_table({io::TableFormat::csv, false}, {{12, {blobs[2]}}}));
+  const auto lines = lines_of(write_table(table_options(io::TableFormat::csv, false), {{12, {blobs[2]}}}));
   ASSERT_EQ(lines.size(), 2U);
   EXPECT_EQ(lines[1], "12,0,1,7,9,7,9,1,1,7,9");
 }
@@ -266,8 +274,8 @@ TEST(BlobTableWriter, JsonLinesCarryTheSameFields) {
   for (const bool moments : {false, true}) {
     SCOPED_TRACE(moments ? "with moments" : "without moments");
     std::int64_t rows = 0;
-    const std::string text =
-        write_table({io::TableFormat::jsonl, moments}, {{5, {blobs[0], blobs[1]}}, {6, {}}, {9, {blobs[2]}}}, &rows);
+    const std::string text = write_table(table_options(io::TableFormat::jsonl, moments),
+                                         {{5, {blobs[0], blobs[1]}}, {6, {}}, {9, {blobs[2]}}}, &rows);
     EXPECT_EQ(rows, 3);
     const auto lines = lines_of(text);
     ASSERT_EQ(lines.size(), 3U);
@@ -309,18 +317,18 @@ TEST(BlobTableWriter, WritesFilesAndRefusesUncreatablePaths) {
   const std::string path = dir.file("blobs.csv");
   std::ofstream(path) << "old content that must go\n";
   {
-    io::BlobTableWriter w(path, {io::TableFormat::csv, true});
+    io::BlobTableWriter w(path, table_options(io::TableFormat::csv, true));
     w.write(0, blobs);
     // Each write is flushed: the rows are in the file before the writer goes away.
     std::ifstream in(path);
     std::stringstream now;
     now << in.rdbuf();
-    EXPECT_EQ(now.str(), write_table({io::TableFormat::csv, true}, {{0, blobs}}));
+    EXPECT_EQ(now.str(), write_table(table_options(io::TableFormat::csv, true), {{0, blobs}}));
   }
   std::ifstream in(path);
   std::stringstream content;
   content << in.rdbuf();
-  EXPECT_EQ(content.str(), write_table({io::TableFormat::csv, true}, {{0, blobs}}));
+  EXPECT_EQ(content.str(), write_table(table_options(io::TableFormat::csv, true), {{0, blobs}}));
 
   const std::string nowhere = dir.file("no/such/dir/blobs.csv");
   try {

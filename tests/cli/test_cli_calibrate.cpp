@@ -1,0 +1,172 @@
+// `neopipe calibrate` end to end on simulator images: dot-grid views -> calib.yaml (readable by
+// OpenCV) -> `neopipe run --calib` adds X,Y near the world file's marbles -> `calibrate map`; point
+// pairs; and bad input: a view without the target is skipped and counted, the first view must show
+// it, sizes must agree, files must be calibrations, frames must match the calibration's size.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/core/persistence.hpp>
+#include <sstream>
+
+#include "cli_test_support.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace neopipe::cli_testing;  // NOLINT(google-build-using-namespace)
+
+class CalibrateCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("neopipe_calibrate_cli_" + std::to_string(getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  [[nodiscard]] std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+  // World + four dot-grid views (the first flat on the workspace at (75, 75)).
+  void make_views() {
+    ASSERT_EQ(run_neopipe({"sim", "world", "--objects", "120", "--seed", "4", "--out", file("w.yaml")}).exit_code, 0);
+    const std::vector<std::string> poses{"75,75,0,0", "80,70,40,3,20,0", "70,80,30,-3,0,22", "80,80,50,2,-15,12"};
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      const auto r = run_neopipe({"sim", "render", "--world", file("w.yaml"), "--target", "dots", "--target-grid",
+                                  "15x15", "--pitch", "25", "--dot-diameter", "9", "--target-pose", poses[i], "--seed",
+                                  std::to_string(i + 1), "--out", file("view" + std::to_string(i) + ".png")});
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+  }
+
+  fs::path dir_;
+};
+
+std::vector<std::vector<double>> rows_of(const std::string& csv, std::string* header) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+bool one_error(const RunResult& r, const std::string& needle) {
+  return r.exit_code != 0 && !r.signaled && r.err.find(needle) != std::string::npos &&
+         std::count(r.err.begin(), r.err.end(), '\n') == 1;
+}
+
+}  // namespace
+
+TEST_F(CalibrateCli, DotGridViewsToWorkspacePositions) {
+  make_views();
+  const auto c = run_neopipe({"calibrate", "--target", "dots:15x15:25mm", "--target-origin", "75,75", file("view0.png"),
+                              file("view1.png"), file("view2.png"), file("view3.png"), "--out", file("calib.yaml"),
+                              "--plot", file("residuals.png"), "-q"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.err.find("model full, 4 view(s) used"), std::string::npos) << c.err;
+  EXPECT_TRUE(fs::file_size(file("residuals.png")) > 1000);
+  {
+    cv::FileStorage fs(file("calib.yaml"), cv::FileStorage::READ);
+    cv::Mat k;
+    fs["camera_matrix"] >> k;
+    EXPECT_NEAR(k.at<double>(0, 0), 1744.3, 0.01 * 1744.3);  // the simulator's default global camera
+  }
+  ASSERT_EQ(run_neopipe({"sim", "render", "--world", file("w.yaml"), "--out", file("marbles.png")}).exit_code, 0);
+  const auto run =
+      run_neopipe({"run", file("marbles.png"), "--graph", std::string(NEOPIPE_EXAMPLES_DIR) + "/marbles.yaml",
+                   "--calib", file("calib.yaml"), "-q"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::string header;
+  const auto rows = rows_of(run.out, &header);
+  EXPECT_EQ(header, "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy,X,Y");
+  ASSERT_EQ(rows.size(), 120U);
+  // Every X,Y within 0.5 mm of a marble of the world file.
+  const std::string world = slurp(file("w.yaml"));
+  std::vector<std::pair<double, double>> marbles;
+  for (std::size_t at = world.find("  - ["); at != std::string::npos; at = world.find("  - [", at + 1)) {
+    const auto comma = world.find(',', at);
+    marbles.emplace_back(std::stod(world.substr(at + 5)), std::stod(world.substr(comma + 1)));
+  }
+  ASSERT_EQ(marbles.size(), 120U);
+  for (const auto& r : rows) {
+    double best = 1e9;
+    for (const auto& m : marbles) best = std::min(best, std::hypot(r[11] - m.first, r[12] - m.second));
+    EXPECT_LT(best, 0.5);
+  }
+  // calibrate map gives the same X,Y as run.
+  write_text(file("px.csv"), "u,v\n" + std::to_string(rows[0][9]) + "," + std::to_string(rows[0][10]) + "\n");
+  const auto m = run_neopipe({"calibrate", "map", "--calib", file("calib.yaml"), file("px.csv")});
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  std::string mh;
+  const auto mapped = rows_of(m.out, &mh);
+  EXPECT_EQ(mh, "u,v,X,Y");
+  ASSERT_EQ(mapped.size(), 1U);
+  EXPECT_NEAR(mapped[0][2], rows[0][11], 1e-3);
+  EXPECT_NEAR(mapped[0][3], rows[0][12], 1e-3);
+}
+
+TEST_F(CalibrateCli, PointPairsGiveAHomography) {
+  // A projective map with a little noise, as points a user measured by hand.
+  std::string csv = "u,v,X,Y\n";
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double x = 50.0 * i;
+      const double y = 40.0 * j;
+      const double w = 1 + 0.0004 * x - 0.0002 * y;
+      csv += std::to_string((100 + 2.1 * x + 0.1 * y) / w) + "," + std::to_string((700 - 2.0 * y + 0.05 * x) / w) +
+             "," + std::to_string(x) + "," + std::to_string(y) + "\n";
+    }
+  }
+  csv += "500,500,0,0\n";  // a gross outlier: RANSAC sets it aside
+  write_text(file("pairs.csv"), csv);
+  const auto r = run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("h.yaml")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("30 points used, 1 rejected"), std::string::npos) << r.err;
+  cv::FileStorage fs(file("h.yaml"), cv::FileStorage::READ);
+  std::string model;
+  fs["model"] >> model;
+  EXPECT_EQ(model, "homography");
+}
+
+TEST_F(CalibrateCli, BadInputIsOneLineAndNonZero) {
+  make_views();
+  // A view without the target is skipped and counted...
+  ASSERT_EQ(run_neopipe({"sim", "render", "--world", file("w.yaml"), "--out", file("marbles.png")}).exit_code, 0);
+  const auto skipped = run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), file("marbles.png"),
+                                    file("view1.png"), file("view2.png"), "--out", file("c.yaml"), "-q"});
+  EXPECT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_NE(skipped.err.find("marbles.png: target not found"), std::string::npos) << skipped.err;
+  EXPECT_NE(skipped.err.find("3 view(s) used, 1 rejected"), std::string::npos) << skipped.err;
+  // ... but the first must show it.
+  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("marbles.png"), file("view0.png"),
+                                     "--out", file("c.yaml")}),
+                        "not found in the first image"));
+  ASSERT_EQ(
+      run_neopipe({"sim", "render", "--world", file("w.yaml"), "--resolution", "640x480", "--out", file("small.png")})
+          .exit_code,
+      0);
+  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), file("small.png"),
+                                     "--out", file("c.yaml")}),
+                        "every view must come from the same camera"));
+  EXPECT_TRUE(
+      one_error(run_neopipe({"calibrate", "--target", "dots:15:30mm", file("view0.png"), "--out", file("c.yaml")}),
+                "expected dots:COLSxROWS:PITCHmm"));
+  write_text(file("broken.yaml"), "%YAML:1.0\n---\nmodel: homography\n");
+  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "map", "--calib", file("broken.yaml")}), "image_size"));
+  // A calibration for 1280 x 960 frames refuses a 640 x 480 frame, after nothing was written.
+  ASSERT_EQ(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), "--out", file("c.yaml"), "-q"})
+                .exit_code,
+            0);
+  EXPECT_TRUE(one_error(run_neopipe({"run", file("small.png"), "--calib", file("c.yaml"), "-q"}), "made for 1280x960"));
+  write_text(file("pairs.csv"), "u,v,X,Y\n1,2,3,4\n1,2,3\n");
+  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}),
+                        "pairs.csv:3: too few columns"));
+  write_text(file("pairs.csv"), "u,v,X,Y\n1,1,1,1\n2,2,2,2\n3,3,3,3\n4,4,4,4\n5,5,5,5\n");
+  EXPECT_TRUE(
+      one_error(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}), "collinear"));
+}
