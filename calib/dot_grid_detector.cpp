@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "calib/dot_grid.hpp"
+#include "calib/grid_labelling.hpp"
 #include "kernels/threshold.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
@@ -104,16 +105,18 @@ int refined_level(const cv::Mat& gray, const std::vector<Eigen::Vector2d>& grid,
     return static_cast<double>(to_dot_units(gray.at<std::uint8_t>(y, x), polarity));
   };
   std::vector<double> dot;
+  dot.reserve(grid.size());
   for (const auto& p : grid) dot.push_back(level_at(p));
   std::vector<double> board;
   for (int j = 0; j + 1 < rows; ++j) {
     for (int i = 0; i + 1 < cols; ++i) {
-      const auto at = [&](int ii, int jj) { return grid[static_cast<std::size_t>(jj * cols + ii)]; };
+      const auto at = [&](int ii, int jj) { return grid[grid_index(ii, jj, cols)]; };
       board.push_back(level_at((at(i, j) + at(i + 1, j) + at(i, j + 1) + at(i + 1, j + 1)) / 4));
     }
   }
   const double board_level = median(board);
   std::vector<double> deviation;
+  deviation.reserve(board.size());
   for (const double b : board) deviation.push_back(std::abs(b - board_level));
   const double board_sigma = 1.4826 * median(deviation);  // the MAD as a Gaussian sigma
   const double t =
