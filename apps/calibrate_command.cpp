@@ -112,6 +112,18 @@ cv::Mat read_image(const std::string& path) {
   return img;
 }
 
+void plot_residuals(const calib::Calibration& c, const calib::Correspondences& points, const std::string& title,
+                    const std::string& path) {
+  std::vector<Eigen::Vector2d> pixels;
+  pixels.reserve(points.size());
+  for (const auto& p : points) pixels.push_back(p.pixel);
+  const auto mapped = c.to_world(pixels);
+  std::vector<Eigen::Vector2d> errors;
+  errors.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) errors.emplace_back(mapped[i] - points[i].world);
+  calib::write_residual_plot(points, errors, title, path);
+}
+
 calib::Calibration from_images(const CalibrateArgs& a) {
   const TargetSpec t = parse_target(a.target);
   const auto origin = a.origin.empty() ? std::vector<double>{0, 0, 0} : parse_origin(a.origin);
@@ -162,13 +174,8 @@ calib::Calibration from_images(const CalibrateArgs& a) {
   c.report.views_rejected = static_cast<int>(rejected.size());
   c.report.rejected = rejected;
   if (!a.plot.empty()) {
-    std::vector<Eigen::Vector2d> pixels;
-    for (const auto& p : workspace) pixels.push_back(p.pixel);
-    const auto mapped = c.to_world(pixels);
-    std::vector<Eigen::Vector2d> errors;
-    for (std::size_t i = 0; i < workspace.size(); ++i) errors.emplace_back(mapped[i] - workspace[i].world);
-    calib::write_residual_plot(
-        workspace, errors, fmt::format("{} model, {} ({})", calib::model_name(c.model), a.images[0], a.target), a.plot);
+    plot_residuals(c, workspace, fmt::format("{} model, {} ({})", calib::model_name(c.model), a.images[0], a.target),
+                   a.plot);
   }
   return c;
 }
@@ -191,14 +198,7 @@ calib::Calibration from_points(const CalibrateArgs& a) {
   calib::EstimateOptions o;
   o.ransac.inlier_mm = a.inlier_mm;
   calib::Calibration c = calib::calibrate_homography(points, size, o);
-  if (!a.plot.empty()) {
-    std::vector<Eigen::Vector2d> pixels;
-    for (const auto& p : points) pixels.push_back(p.pixel);
-    const auto mapped = c.to_world(pixels);
-    std::vector<Eigen::Vector2d> errors;
-    for (std::size_t i = 0; i < points.size(); ++i) errors.emplace_back(mapped[i] - points[i].world);
-    calib::write_residual_plot(points, errors, "homography model, " + a.points, a.plot);
-  }
+  if (!a.plot.empty()) plot_residuals(c, points, "homography model, " + a.points, a.plot);
   return c;
 }
 

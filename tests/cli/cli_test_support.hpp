@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -110,5 +111,42 @@ inline RunResult run_neopipe(const std::vector<std::string>& args) {
   EXPECT_FALSE(r.timed_out) << describe(args) << ": killed after " << kTimeoutSeconds << " s";
   return r;
 }
+
+/// A CSV table of numbers: the header line into `header`, then each row's cells.
+inline std::vector<std::vector<double>> csv_numbers(const std::string& text, std::string* header) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, *header);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+/// Failed cleanly (no signal) with exactly one line on stderr, which contains `needle`.
+inline bool one_error_line(const RunResult& r, const std::string& needle) {
+  return r.exit_code != 0 && !r.signaled && r.err.find(needle) != std::string::npos &&
+         std::count(r.err.begin(), r.err.end(), '\n') == 1;
+}
+
+/// A fresh folder per test, removed afterwards.
+class ScratchDirTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("neopipe_cli_" + std::to_string(getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  [[nodiscard]] std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  fs::path dir_;
+};
 
 }  // namespace neopipe::cli_testing

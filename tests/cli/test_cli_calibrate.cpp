@@ -15,16 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace neopipe::cli_testing;  // NOLINT(google-build-using-namespace)
 
-class CalibrateCli : public ::testing::Test {
+class CalibrateCli : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("neopipe_calibrate_cli_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  [[nodiscard]] std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
   // World + four dot-grid views (the first flat on the workspace at (75, 75)).
   void make_views() {
     ASSERT_EQ(run_neopipe({"sim", "world", "--objects", "120", "--seed", "4", "--out", file("w.yaml")}).exit_code, 0);
@@ -36,29 +28,7 @@ class CalibrateCli : public ::testing::Test {
       ASSERT_EQ(r.exit_code, 0) << r.err;
     }
   }
-
-  fs::path dir_;
 };
-
-std::vector<std::vector<double>> rows_of(const std::string& csv, std::string* header) {
-  std::istringstream in(csv);
-  std::string line;
-  std::getline(in, *header);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-bool one_error(const RunResult& r, const std::string& needle) {
-  return r.exit_code != 0 && !r.signaled && r.err.find(needle) != std::string::npos &&
-         std::count(r.err.begin(), r.err.end(), '\n') == 1;
-}
 
 }  // namespace
 
@@ -82,7 +52,7 @@ TEST_F(CalibrateCli, DotGridViewsToWorkspacePositions) {
                    "--calib", file("calib.yaml"), "-q"});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   std::string header;
-  const auto rows = rows_of(run.out, &header);
+  const auto rows = csv_numbers(run.out, &header);
   EXPECT_EQ(header, "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy,X,Y");
   ASSERT_EQ(rows.size(), 120U);
   // Every X,Y within 0.5 mm of a marble of the world file.
@@ -103,7 +73,7 @@ TEST_F(CalibrateCli, DotGridViewsToWorkspacePositions) {
   const auto m = run_neopipe({"calibrate", "map", "--calib", file("calib.yaml"), file("px.csv")});
   ASSERT_EQ(m.exit_code, 0) << m.err;
   std::string mh;
-  const auto mapped = rows_of(m.out, &mh);
+  const auto mapped = csv_numbers(m.out, &mh);
   EXPECT_EQ(mh, "u,v,X,Y");
   ASSERT_EQ(mapped.size(), 1U);
   EXPECT_NEAR(mapped[0][2], rows[0][11], 1e-3);
@@ -143,30 +113,31 @@ TEST_F(CalibrateCli, BadInputIsOneLineAndNonZero) {
   EXPECT_NE(skipped.err.find("marbles.png: target not found"), std::string::npos) << skipped.err;
   EXPECT_NE(skipped.err.find("3 view(s) used, 1 rejected"), std::string::npos) << skipped.err;
   // ... but the first must show it.
-  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("marbles.png"), file("view0.png"),
-                                     "--out", file("c.yaml")}),
-                        "not found in the first image"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("marbles.png"),
+                                          file("view0.png"), "--out", file("c.yaml")}),
+                             "not found in the first image"));
   ASSERT_EQ(
       run_neopipe({"sim", "render", "--world", file("w.yaml"), "--resolution", "640x480", "--out", file("small.png")})
           .exit_code,
       0);
-  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), file("small.png"),
-                                     "--out", file("c.yaml")}),
-                        "every view must come from the same camera"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"),
+                                          file("small.png"), "--out", file("c.yaml")}),
+                             "every view must come from the same camera"));
   EXPECT_TRUE(
-      one_error(run_neopipe({"calibrate", "--target", "dots:15:30mm", file("view0.png"), "--out", file("c.yaml")}),
-                "expected dots:COLSxROWS:PITCHmm"));
+      one_error_line(run_neopipe({"calibrate", "--target", "dots:15:30mm", file("view0.png"), "--out", file("c.yaml")}),
+                     "expected dots:COLSxROWS:PITCHmm"));
   write_text(file("broken.yaml"), "%YAML:1.0\n---\nmodel: homography\n");
-  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "map", "--calib", file("broken.yaml")}), "image_size"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "map", "--calib", file("broken.yaml")}), "image_size"));
   // A calibration for 1280 x 960 frames refuses a 640 x 480 frame, after nothing was written.
   ASSERT_EQ(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), "--out", file("c.yaml"), "-q"})
                 .exit_code,
             0);
-  EXPECT_TRUE(one_error(run_neopipe({"run", file("small.png"), "--calib", file("c.yaml"), "-q"}), "made for 1280x960"));
+  EXPECT_TRUE(
+      one_error_line(run_neopipe({"run", file("small.png"), "--calib", file("c.yaml"), "-q"}), "made for 1280x960"));
   write_text(file("pairs.csv"), "u,v,X,Y\n1,2,3,4\n1,2,3\n");
-  EXPECT_TRUE(one_error(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}),
-                        "pairs.csv:3: too few columns"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}),
+                             "pairs.csv:3: too few columns"));
   write_text(file("pairs.csv"), "u,v,X,Y\n1,1,1,1\n2,2,2,2\n3,3,3,3\n4,4,4,4\n5,5,5,5\n");
   EXPECT_TRUE(
-      one_error(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}), "collinear"));
+      one_error_line(run_neopipe({"calibrate", "--points", file("pairs.csv"), "--out", file("c.yaml")}), "collinear"));
 }

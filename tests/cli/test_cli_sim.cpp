@@ -17,37 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace neopipe::cli_testing;  // NOLINT(google-build-using-namespace)
 
-class SimCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("neopipe_sim_cli_" + std::to_string(getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  [[nodiscard]] std::string file(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
-
-std::vector<std::vector<double>> csv_numbers(const std::string& text, std::string* header) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, *header);
-  std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    std::stringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-bool one_error_line(const RunResult& r, const std::string& needle) {
-  return r.exit_code != 0 && !r.signaled && r.err.find(needle) != std::string::npos &&
-         std::count(r.err.begin(), r.err.end(), '\n') == 1;
-}
+class SimCli : public ScratchDirTest {};
 
 }  // namespace
 
