@@ -15,7 +15,9 @@ packages=(
   nlohmann-json3-dev     # JSON output
   libgtest-dev libgmock-dev
   libbenchmark-dev       # kernel micro-benchmarks
-  ffmpeg                 # OpenCV's video back end and a handy tool for users' videos
+  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # FFmpeg's libraries: neopipe's video reader
+  ffmpeg                 # OpenCV's video back end; the tests make sample videos with it
+  opencv-doc             # its sample video (examples/data/vtest.avi) is a test input
 )
 
 missing=()
