@@ -49,6 +49,12 @@ pl::GraphSpec run_graph(const RunArgs& a) {
   pl::BlobGraphOptions o;
   if (!a.threshold.empty() && a.threshold != "otsu") o.threshold = std::stoi(a.threshold);
   o.connectivity = a.connectivity == 0 ? 8 : a.connectivity;
+  // Nothing but --annotate looks at colour, so the frames are read gray: from a video, that is the
+  // decoder's luma plane, with no colour conversion at all. --annotate draws on the frames the graph
+  // read and keeps their colour: it reads BGR and converts in the graph. That gray is BT.601 of
+  // swscale's BGR, which truncates: on colourful video 1-2 levels darker than the luma on most
+  // pixels (tests/pipeline/test_libav_video_source.cpp), so tables can differ slightly.
+  o.source = a.annotate.empty() ? pl::PortType::gray8 : pl::PortType::bgr8;
   return pl::blob_graph(o);
 }
 
@@ -60,6 +66,7 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
   CLI::App* cmd = parent.add_subcommand("run", "Process a video or images through a graph; write the blob table");
   cmd->footer(
       "Without --graph: the built-in blob graph, gray (BT.601) -> threshold (Otsu per frame) -> blobs (8-connected).\n"
+      "Frames are read gray (a video's luma plane), or in colour with --annotate, which draws on them.\n"
       "Blob table columns: frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy (with --moments also mu20,mu11,mu02).\n"
       "Exit status: 0 done, 1 bad input or failed processing, 2 bad command line, 130 interrupted.");
   cmd->add_option("inputs", a.inputs, "A video file, or image files and directories of images")->type_name("INPUT...");

@@ -35,7 +35,8 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& args);
 int run_command(const RunArgs& args);
 
 /// The graph `neopipe run` runs for `args`: --graph's spec, else the built-in blob graph as
-/// --threshold and --connectivity configure it. `neopipe bench --video` runs it with RunArgs{}.
+/// --threshold and --connectivity configure it, reading gray frames, or BGR ones with --annotate
+/// (which draws on them). `neopipe bench --video` runs it with RunArgs{}.
 /// Throws UsageError for --threshold or --connectivity together with --graph.
 pipeline::GraphSpec run_graph(const RunArgs& args);
 /// The pixel format `neopipe run` reads frames in for `graph`: BGR for a bgr8 source, else gray.

@@ -1,7 +1,8 @@
 #pragma once
-// `neopipe bench --video FILE`: how fast neopipe's reader decodes a video with nothing else to do,
-// beside how fast `neopipe run` gets through the same file (reading plus the graph, the results
-// discarded), measured in the same run, interleaved.
+// `neopipe bench --video FILE`: how fast `neopipe run` gets through a video (reading plus the graph,
+// the results discarded) beside two decode-only rates: cv::VideoCapture reading BGR frames (what a
+// user would reach for, issue 3's reference) and neopipe's own reader in the graph's format. All
+// three are measured in the same run, interleaved.
 
 #include <cstdint>
 #include <opencv2/core/types.hpp>
@@ -28,16 +29,16 @@ struct VideoInfo {
 VideoInfo probe_video(const std::string& path, pipeline::io::ColorFormat format);
 
 struct VideoRecord {
-  std::string impl;  ///< "decode" or "run"
+  std::string impl;  ///< "opencv_decode", "decode" or "run"
   int threads = 0;
   double fps = 0;  ///< median over the repeats
 };
 
-/// Medians over o.repeats of
-///   decode: the frame source read with nothing done to the frames (cv::VideoCapture through
-///           neopipe's own reader, converted to `format` as it does for the graph);
-///   run:    pipeline::run_stream of `graph` on a fresh source with `threads` workers, in batch mode,
-///           the results discarded.
+/// Medians over o.repeats of, in this order within each repeat:
+///   opencv_decode: cv::VideoCapture(path, CAP_FFMPEG).read() into BGR frames, nothing else;
+///   decode:        neopipe's frame source (pipeline::io::open_frame_source) in `format`, nothing else;
+///   run:           pipeline::run_stream of `graph` on a fresh source with `threads` workers, in batch
+///                  mode, the results discarded.
 /// Each timed run goes through the file again as often as it takes to last o.min_seconds, and in a
 /// long file stops early once they have passed. Opening the file is timed, compiling the graph not.
 std::vector<VideoRecord> run_video_bench(const std::string& path, const pipeline::GraphSpec& graph,

@@ -15,7 +15,8 @@ struct BlobGraphOptions {
 };
 
 /// source -> gray -> threshold -> blobs, the blobs weighted by the gray image. Its output is the
-/// blob table "blobs". examples/blobs.yaml is the same graph as a spec file.
+/// blob table "blobs". examples/blobs.yaml is the same graph (with a bgr8 source) as a spec file.
+/// `neopipe run` uses a gray8 source unless it annotates (apps/run_command.cpp).
 GraphSpec blob_graph(const BlobGraphOptions& options = {});
 
 }  // namespace neopipe::pipeline

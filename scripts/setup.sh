@@ -15,8 +15,9 @@ packages=(
   nlohmann-json3-dev     # JSON output
   libgtest-dev libgmock-dev
   libbenchmark-dev       # kernel micro-benchmarks
-  ffmpeg                 # OpenCV's video back end and a handy tool for users' videos
-  opencv-doc             # sample images and videos the tests check against (chessboard photos, vtest.avi)
+  libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # FFmpeg's libraries: neopipe's video reader
+  ffmpeg                 # OpenCV's video back end; the tests make sample videos with it
+  opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
 )
 
 missing=()

@@ -8,7 +8,7 @@
 #include "pipeline/io/files.hpp"
 #include "pipeline/io/frame_source.hpp"
 #include "pipeline/io/image_sequence_source.hpp"
-#include "pipeline/io/video_source.hpp"
+#include "pipeline/io/libav_video_source.hpp"
 
 namespace neopipe::pipeline::io {
 namespace fs = std::filesystem;
@@ -55,7 +55,7 @@ std::unique_ptr<FrameSource> open_frame_source(const std::vector<std::string>& i
       throw SourceError(videos.front() + ": give one video, or any number of images (" + std::to_string(inputs.size()) +
                         " inputs were given)");
     }
-    return std::make_unique<VideoSource>(videos.front(), format);
+    return std::make_unique<LibavVideoSource>(videos.front(), format);
   }
   std::string description = images.size() == 1 ? images.front()
                                                : std::to_string(images.size()) + " images from " +

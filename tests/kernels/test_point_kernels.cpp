@@ -1,4 +1,5 @@
-// Point kernels: lut, threshold, otsu_threshold, alu, lut2, bgr_to_gray, convert_s16 and histogram.
+// Point kernels: lut, threshold, otsu_threshold, alu, lut2, bgr_to_gray, limited_to_full_luma, convert_s16 and
+// histogram.
 // Each is held to OpenCV where OpenCV computes the same thing (cv::LUT, cv::threshold, cv::add, ...,
 // cv::cvtColor, cv::calcHist) and to the scalar reference otherwise. Also checked: row-range (stripe)
 // calls give the whole-frame result and write only their rows, argument errors throw KernelError,
@@ -7,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <opencv2/core.hpp>
@@ -19,6 +21,7 @@
 #include "kernels/convert.hpp"
 #include "kernels/gray.hpp"
 #include "kernels/histogram.hpp"
+#include "kernels/luma_range.hpp"
 #include "kernels/lut.hpp"
 #include "kernels/lut2.hpp"
 #include "kernels/reference/reference.hpp"
@@ -514,6 +517,45 @@ TEST(Gray, RejectsNonBgrInput) {
   EXPECT_THROW(k::bgr_to_gray(cv::Mat(4, 4, CV_8UC4), dst), k::KernelError);
   EXPECT_THROW(k::bgr_to_gray(cv::Mat(4, 4, CV_16UC3), dst), k::KernelError);
   EXPECT_THROW(k::bgr_to_gray(cv::Mat(), dst), k::KernelError);
+}
+
+// =============================================================================================
+// limited_to_full_luma (the video reader's luma-plane gray)
+
+TEST(LumaRange, EqualsTheFormulaForEveryInput) {
+  for (int y = 0; y < 256; ++y) {
+    // clamp(round((y - 16) * 255 / 219)); (y - 16) * 255 / 219 is never an exact half, so the
+    // rounding direction of halves does not matter.
+    const long want = std::clamp(std::lround((y - 16) * 255.0 / 219.0), 0L, 255L);
+    EXPECT_EQ(k::limited_to_full_luma_exact(y), want) << "y = " << y;
+    EXPECT_EQ(k::limited_to_full_luma(static_cast<std::uint8_t>(y)), want) << "y = " << y;
+  }
+  EXPECT_EQ(k::limited_to_full_luma(16), 0);
+  EXPECT_EQ(k::limited_to_full_luma(235), 255);
+  EXPECT_EQ(k::limited_to_full_luma(0), 0);
+  EXPECT_EQ(k::limited_to_full_luma(255), 255);
+}
+
+TEST(LumaRange, RowFunctionEqualsTheFormulaAtEveryWidthAndOffset) {
+  // Every value, at widths below, at and above a vector and with a ragged end, from unaligned
+  // starts; and in place.
+  std::vector<std::uint8_t> in(300 + 64);
+  for (size_t i = 0; i < in.size(); ++i) in[i] = static_cast<std::uint8_t>((i * 7 + 3) & 255);
+  for (const int width : {1, 7, 15, 16, 17, 31, 32, 33, 63, 64, 65, 100, 256, 300}) {
+    for (const int offset : {0, 1, 3}) {
+      const std::uint8_t* src = in.data() + offset;
+      std::vector<std::uint8_t> out(static_cast<size_t>(width) + 1, 0xAB);
+      k::limited_to_full_luma_row(src, out.data(), width);
+      for (int x = 0; x < width; ++x) {
+        ASSERT_EQ(out[static_cast<size_t>(x)], k::limited_to_full_luma_exact(src[x]))
+            << "width " << width << ", offset " << offset << ", x " << x;
+      }
+      EXPECT_EQ(out.back(), 0xAB) << "wrote past the row, width " << width;
+      std::vector<std::uint8_t> same(src, src + width);
+      k::limited_to_full_luma_row(same.data(), same.data(), width);
+      EXPECT_TRUE(std::equal(same.begin(), same.end(), out.begin())) << "in place, width " << width;
+    }
+  }
 }
 
 // =============================================================================================

@@ -3,11 +3,11 @@
 // with cv::VideoWriter (FFmpeg). Checked: a directory is read in name order and only its image
 // files are taken; explicit image files keep the order given; frames carry indices 0, 1, ...;
 // frame_count(), fps() and description(); bgr and gray formats (a gray frame must equal
-// cv::cvtColor(BGR2GRAY) of the bgr frame). Every failure is a SourceError naming the path: a
-// missing path, text files named .png or .mp4, an empty directory or one without images, a video
-// given with an image, an image sequence whose second image has another size, a corrupt image in a
-// directory, a video with no frames, and a truncated video, which must fail loudly rather than end
-// early as if it were complete.
+// cv::cvtColor(BGR2GRAY) of the bgr frame; from a YUV video, within a few levels). Every failure is
+// a SourceError naming the path: a missing path, text files named .png or .mp4, an empty directory
+// or one without images, a video given with an image, an image sequence whose second image has
+// another size, a corrupt image in a directory, a video with no frames, and a truncated video, which
+// must fail loudly rather than end early as if it were complete.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -213,6 +213,9 @@ TEST(VideoSource, LosslessVideoFramesCountAndRate) {
   EXPECT_FALSE(source->next().has_value());
 }
 
+// OpenCV's FFV1 holds RGB pixels, which the reader takes to gray through BGR: exactly cvtColor of
+// the BGR frame. MJPG holds YUV, whose gray is the luma plane: within a few gray levels of it (see
+// test_libav_video_source.cpp for why and for more formats).
 TEST(VideoSource, GrayFrameEqualsCvtColorOfTheBgrFrame) {
   const TempDir dir("neopipe_sources_video_gray");
   const std::string mkv = dir.file("clip.mkv");
@@ -231,7 +234,11 @@ TEST(VideoSource, GrayFrameEqualsCvtColorOfTheBgrFrame) {
     for (size_t i = 0; i < frames.size(); ++i) {
       ASSERT_EQ(b[i].image.type(), CV_8UC3);
       ASSERT_EQ(g[i].image.type(), CV_8UC1);
-      EXPECT_TRUE(same_image(g[i].image, gray_of(b[i].image))) << "frame " << i;
+      if (path == mkv) {
+        EXPECT_TRUE(same_image(g[i].image, gray_of(b[i].image))) << "frame " << i;
+      } else {
+        EXPECT_LE(cv::norm(g[i].image, gray_of(b[i].image), cv::NORM_INF), 3) << "frame " << i;
+      }
     }
   }
   EXPECT_EQ(io::open_frame_source({avi}, io::ColorFormat::bgr)->fps(), 12.5);
@@ -261,7 +268,8 @@ TEST(FrameSourceErrors, TextFilesWithMediaNames) {
     SCOPED_TRACE(name);
     const std::string path = dir.file(name);
     write_text(path, "these are words, not pixels\n");
-    EXPECT_EQ(source_error({path}), path + ": neither an image nor a video OpenCV can read");
+    const std::string message = source_error({path});
+    EXPECT_EQ(message.rfind(path + ": neither an image nor a video neopipe can read (FFmpeg: ", 0), 0U) << message;
   }
   // A text file with an image name inside a directory is taken by its name and fails when read.
   const TempDir seq("neopipe_sources_text_in_dir");
