@@ -1,0 +1,3 @@
+#include "nav/mapmaker/planner.hpp"
+
+// Implementation in progress (helper branch nav-planner).
