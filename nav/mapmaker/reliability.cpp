@@ -1,0 +1,3 @@
+#include "nav/mapmaker/reliability.hpp"
+
+// Fitted function and trajectory approximation: in progress on branch nav-reliability.
