@@ -9,6 +9,7 @@ enum ExitCode : int {
   kExitOk = 0,
   kExitFailure = 1,       ///< bad input, failed processing
   kExitUsage = 2,         ///< bad command line
+  kExitUnreachable = 3,   ///< neopipe map: the goal cannot be reached from the start
   kExitInterrupted = 130  ///< stopped by Ctrl-C after finishing the frames in flight
 };
 

@@ -10,6 +10,7 @@
 #include "apps/calibrate_command.hpp"
 #include "apps/cli_support.hpp"
 #include "apps/run_command.hpp"
+#include "apps/map_command.hpp"
 #include "apps/sim_command.hpp"
 
 namespace {
@@ -50,6 +51,8 @@ int run_main(int argc, char** argv) {
   CLI::App* calibrate = add_calibrate_command(app, calibrate_args);
   SimArgs sim_args;
   CLI::App* sim = add_sim_command(app, sim_args);
+  MapArgs map_args;
+  CLI::App* map = add_map_command(app, map_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -57,7 +60,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -80,6 +83,7 @@ int run_main(int argc, char** argv) {
     const std::string name = calibrate->got_subcommand("map") ? "calibrate map" : "calibrate";
     return guarded(name, [&] { return calibrate_command(*calibrate, calibrate_args); });
   }
+  if (map->parsed()) return guarded("map", [&] { return map_command(map_args); });
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();
     return guarded("sim " + subs.front()->get_name(), [&] { return sim_command(*sim, sim_args); });

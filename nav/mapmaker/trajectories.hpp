@@ -10,19 +10,11 @@
 #include <string_view>
 #include <vector>
 
+#include "nav/common/custom_map.hpp"
 #include "nav/common/landmarks.hpp"
 #include "nav/mapmaker/views.hpp"
 
 namespace neopipe::nav::mapmaker {
-
-enum class Direction : std::uint8_t { positive, negative };  // Trajp, Trajn
-
-constexpr std::string_view direction_name(Direction d) {
-  return d == Direction::positive ? "p" : "n";
-}
-constexpr std::string_view trajectory_name(Direction d) {
-  return d == Direction::positive ? "Trajp" : "Trajn";
-}
 
 struct TrajectoryHit {
   std::uint32_t object = 0;  ///< the first object to enter

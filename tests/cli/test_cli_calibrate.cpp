@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <sstream>
 
@@ -68,6 +69,31 @@ TEST_F(CalibrateCli, DotGridViewsToWorkspacePositions) {
     for (const auto& m : marbles) best = std::min(best, std::hypot(r[11] - m.first, r[12] - m.second));
     EXPECT_LT(best, 0.5);
   }
+  // The map-maker's world model from the global camera (issue 5, item 6): the blob table's X,Y are
+  // its objects, and the calibration's held-out error its sigma.
+  write_text(file("blobs.csv"), run.out);
+  const auto map = run_neopipe({"map", "--blobs", file("blobs.csv"), "--calib", file("calib.yaml"), "--json"});
+  ASSERT_EQ(map.exit_code, 0) << map.err;
+  const auto j = nlohmann::json::parse(map.out);
+  ASSERT_EQ(j["positions"].size(), 120U);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(j["positions"][i][0].get<double>(), rows[i][11]);
+    EXPECT_EQ(j["positions"][i][1].get<double>(), rows[i][12]);
+  }
+  {
+    cv::FileStorage fs(file("calib.yaml"), cv::FileStorage::READ);
+    std::vector<double> sd;
+    fs["held_out_sd_mm"] >> sd;
+    ASSERT_EQ(sd.size(), 2U);
+    EXPECT_DOUBLE_EQ(j["sigma"].get<double>(), std::max(sd[0], sd[1]));
+  }
+  // Same parkways as the map-maker gets from the world file itself (ids differ: raster vs file order).
+  const auto from_world = run_neopipe({"map", "--world", file("w.yaml"), "--json", "--sigma", "0.01"});
+  ASSERT_EQ(from_world.exit_code, 0) << from_world.err;
+  const auto w = nlohmann::json::parse(from_world.out);
+  EXPECT_EQ(j["parkways"]["general"].size(), w["parkways"]["general"].size());
+  EXPECT_EQ(j["parkways"]["isolated"].size(), w["parkways"]["isolated"].size());
+  EXPECT_EQ(j["trajectories"].size(), w["trajectories"].size());
   // calibrate map gives the same X,Y as run.
   write_text(file("px.csv"), "u,v\n" + std::to_string(rows[0][9]) + "," + std::to_string(rows[0][10]) + "\n");
   const auto m = run_neopipe({"calibrate", "map", "--calib", file("calib.yaml"), file("px.csv")});

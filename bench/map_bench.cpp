@@ -1,0 +1,77 @@
+// The map-maker's cost as the world grows (issue: 10,000 objects in under 1 s on one core): a world
+// at the default density (100 marbles per 500 x 500 mm) is mapped whole — views, parkways,
+// trajectories with their reliabilities — and one route planned across it with its custom map.
+// Peer in the same run: the general parkways by checking every pair, O(n^2), which the grid avoids.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "nav/mapmaker/map_maker.hpp"
+#include "nav/mapmaker/parkways.hpp"
+#include "sim/world.hpp"
+
+namespace {
+
+namespace mm = neopipe::nav::mapmaker;
+
+mm::Workspace world_of(int objects) {
+  const double side = 500 * std::sqrt(objects / 100.0);
+  const neopipe::sim::World w =
+      neopipe::sim::generate_world({objects, {side, side}, 5.0, 3.0, static_cast<std::uint64_t>(objects)});
+  return {w.size, w.objects};
+}
+
+void BM_MapWorldAndRoute(benchmark::State& state) {
+  const mm::Workspace workspace = world_of(static_cast<int>(state.range(0)));
+  std::size_t steps = 0;
+  for (auto _ : state) {
+    const mm::MapMaker maker(workspace, mm::MapMakerOptions{});
+    const auto general = mm::general_parkways(maker.views());
+    benchmark::DoNotOptimize(general.data());
+    // A route from the object nearest one corner to the one nearest the opposite corner.
+    std::uint32_t a = 0;
+    std::uint32_t b = 0;
+    for (std::uint32_t i = 0; i < workspace.objects.size(); ++i) {
+      if (workspace.objects[i].sum() < workspace.objects[a].sum()) a = i;
+      if (workspace.objects[i].sum() > workspace.objects[b].sum()) b = i;
+    }
+    try {
+      const mm::Route r = maker.plan(a, b, mm::CostCriterion::ratio);
+      steps = r.steps.size();
+    } catch (const mm::UnreachableGoal&) {
+      steps = 0;
+    }
+  }
+  state.counters["objects"] = static_cast<double>(workspace.objects.size());
+  state.counters["route_steps"] = static_cast<double>(steps);
+}
+BENCHMARK(BM_MapWorldAndRoute)->Arg(100)->Arg(1000)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+
+// Peer: every pair checked for a shared window.
+void BM_GeneralParkwaysAllPairs(benchmark::State& state) {
+  const mm::Workspace workspace = world_of(static_cast<int>(state.range(0)));
+  const neopipe::nav::WindowModel window;
+  for (auto _ : state) {
+    std::size_t edges = 0;
+    const auto& o = workspace.objects;
+    for (std::size_t i = 0; i < o.size(); ++i) {
+      for (std::size_t j = i + 1; j < o.size(); ++j) edges += window.fit_together(o[i], o[j]) ? 1 : 0;
+    }
+    benchmark::DoNotOptimize(edges);
+  }
+}
+BENCHMARK(BM_GeneralParkwaysAllPairs)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+void BM_GeneralParkwaysGrid(benchmark::State& state) {
+  const mm::Workspace workspace = world_of(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const mm::WorldViews views(workspace, neopipe::nav::WindowModel{});
+    benchmark::DoNotOptimize(mm::general_parkways(views).size());
+  }
+}
+BENCHMARK(BM_GeneralParkwaysGrid)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,160 @@
+#include "nav/common/custom_map.hpp"
+
+#include <cctype>
+#include <charconv>
+
+namespace neopipe::nav {
+
+std::optional<int> MapEntry::verified_qoc() const {
+  for (const RecoveryRule& r : rules) {
+    if (!r.corner) return r.qoc;
+  }
+  return std::nullopt;
+}
+
+const RecoveryRule* MapEntry::recovery_for(int qoc) const {
+  for (const RecoveryRule& r : rules) {
+    if (r.corner && r.qoc == qoc) return &r;
+  }
+  return nullptr;
+}
+
+std::string format_entry(const MapEntry& entry) {
+  std::string out = "(";
+  out += description_name(entry.seek);
+  if (entry.slide) out += std::string(", ") + std::string(trajectory_name(*entry.slide));
+  for (const RecoveryRule& r : entry.rules) {
+    out += ", (" + std::to_string(r.qoc) + ", ";
+    out += r.corner ? std::string(corner_name(*r.corner)) + ", " + std::string(description_name(r.seek)) : "-";
+    out += ")";
+  }
+  out += ", ";
+  out += entry.adjust ? std::string(corner_name(*entry.adjust)) : "-";
+  return out + ")";
+}
+
+std::string format_custom_map(const CustomMap& map) {
+  std::string out = "(";
+  for (std::size_t i = 0; i < map.entries.size(); ++i) out += (i ? ", " : "") + format_entry(map.entries[i]);
+  return out + ")";
+}
+
+namespace {
+
+// A recursive-descent reader over the grammar
+//   map   := '(' [entry {',' entry}] ')'
+//   entry := '(' DESC [',' TRAJ] {',' rule} ',' (CORNER | '-') ')'
+//   rule  := '(' INT ',' ((CORNER ',' DESC) | '-') ')'
+class Reader {
+ public:
+  explicit Reader(std::string_view text) : text_(text) {}
+
+  CustomMap map() {
+    CustomMap m;
+    expect('(');
+    if (!peek(')')) {
+      do m.entries.push_back(entry());
+      while (accept(','));
+    }
+    expect(')');
+    skip_space();
+    if (pos_ != text_.size()) fail("end of the map");
+    return m;
+  }
+
+ private:
+  MapEntry entry() {
+    MapEntry e;
+    expect('(');
+    const std::string desc = word();
+    const auto d = parse_description(desc);
+    if (!d) fail("a description (Obvious, Isol or *)", desc);
+    e.seek = *d;
+    while (true) {
+      expect(',');
+      if (peek('(')) {
+        e.rules.push_back(rule());
+        continue;
+      }
+      const std::string w = word();
+      if (w == "Trajp" || w == "Trajn") {
+        if (e.slide || !e.rules.empty()) fail("a recovery rule or a corner", w);
+        e.slide = w == "Trajp" ? Direction::positive : Direction::negative;
+        continue;
+      }
+      if (w == "-") break;
+      const auto c = parse_corner(w);
+      if (!c) fail("a corner (SE, SW, NE, NW) or -", w);
+      e.adjust = *c;
+      break;
+    }
+    expect(')');
+    return e;
+  }
+
+  RecoveryRule rule() {
+    RecoveryRule r;
+    expect('(');
+    const std::string k = word();
+    int value = -1;
+    const auto [end, ec] = std::from_chars(k.data(), k.data() + k.size(), value);
+    if (ec != std::errc{} || end != k.data() + k.size() || value < 0 || value > 4) fail("a QOC 0..4", k);
+    r.qoc = value;
+    expect(',');
+    const std::string w = word();
+    if (w != "-") {
+      const auto c = parse_corner(w);
+      if (!c) fail("a corner (SE, SW, NE, NW) or -", w);
+      r.corner = *c;
+      expect(',');
+      const std::string desc = word();
+      const auto d = parse_description(desc);
+      if (!d) fail("a description (Obvious, Isol or *)", desc);
+      r.seek = *d;
+    }
+    expect(')');
+    return r;
+  }
+
+  void skip_space() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+  bool peek(char c) {
+    skip_space();
+    return pos_ < text_.size() && text_[pos_] == c;
+  }
+  bool accept(char c) {
+    if (!peek(c)) return false;
+    ++pos_;
+    return true;
+  }
+  void expect(char c) {
+    if (!accept(c)) fail(std::string("'") + c + "'");
+  }
+  std::string word() {
+    skip_space();
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != ',' && text_[pos_] != '(' && text_[pos_] != ')' &&
+           !std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+      ++pos_;
+    }
+    return std::string(text_.substr(start, pos_ - start));
+  }
+  [[noreturn]] void fail(const std::string& expected, const std::string& found = "") const {
+    std::string got = found;
+    if (got.empty()) got = pos_ < text_.size() ? std::string(1, text_[pos_]) : "the end";
+    throw CustomMapError("custom map: at character " + std::to_string(pos_ + 1) + ": expected " + expected +
+                         ", found '" + got + "'");
+  }
+
+  std::string_view text_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+CustomMap parse_custom_map(std::string_view text) {
+  return Reader(text).map();
+}
+
+}  // namespace neopipe::nav

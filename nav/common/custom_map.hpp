@@ -1,0 +1,67 @@
+#pragma once
+// The custom map (park-kender.md §8, paper §5.5 and §6.3.4): the only thing the map-maker sends the
+// navigator. An entry (D, [T], [E...], M): seek the landmark described by D; optionally slide along
+// the reference->landmark direction (Trajp) or back (Trajn) until a new object enters and take that
+// one; verify it by its QOC and apply the recovery rules E; adjust it to corner M ('-' at the goal).
+// Text form, as in the paper: ((*, SW), (Isol, SE), (Isol, Trajp, (2, NW, Isol), (1, -), -)).
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "nav/common/landmarks.hpp"
+#include "nav/common/window.hpp"
+
+namespace neopipe::nav {
+
+enum class Direction : std::uint8_t { positive, negative };  // Trajp, Trajn
+
+constexpr std::string_view direction_name(Direction d) {
+  return d == Direction::positive ? "p" : "n";
+}
+constexpr std::string_view trajectory_name(Direction d) {
+  return d == Direction::positive ? "Trajp" : "Trajn";
+}
+
+/// (k, corner, D'): when the landmark reached has QOC k, hold it at `corner` and seek D' (which
+/// leads back toward the intended landmark). (k, -): QOC k is the intended landmark's: verified.
+struct RecoveryRule {
+  int qoc = 0;
+  std::optional<Corner> corner;  ///< none: "verified / arrived"
+  Description seek = Description::Isol;
+  friend bool operator==(const RecoveryRule&, const RecoveryRule&) = default;
+};
+
+struct MapEntry {
+  Description seek = Description::Isol;
+  std::optional<Direction> slide;
+  std::vector<RecoveryRule> rules;
+  std::optional<Corner> adjust;  ///< none ('-'): the goal, stay
+  friend bool operator==(const MapEntry&, const MapEntry&) = default;
+
+  /// The QOC that verifies this entry's landmark, when the map gives one.
+  std::optional<int> verified_qoc() const;
+  /// The rule for a landmark reached with QOC k that is not the verified one.
+  const RecoveryRule* recovery_for(int qoc) const;
+};
+
+struct CustomMap {
+  std::vector<MapEntry> entries;
+  friend bool operator==(const CustomMap&, const CustomMap&) = default;
+};
+
+class CustomMapError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string format_entry(const MapEntry& entry);
+/// The whole map on one line, entries in order.
+std::string format_custom_map(const CustomMap& map);
+/// Reads the text form back; throws CustomMapError naming the character offset and what was
+/// expected. parse(format(m)) == m.
+CustomMap parse_custom_map(std::string_view text);
+
+}  // namespace neopipe::nav

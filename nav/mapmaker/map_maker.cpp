@@ -1,0 +1,110 @@
+#include "nav/mapmaker/map_maker.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
+
+namespace neopipe::nav::mapmaker {
+
+double Route::ratio() const {
+  return distance * std::exp(unreliability);
+}
+
+MapMaker::MapMaker(Workspace workspace, const MapMakerOptions& options)
+    : workspace_(std::move(workspace)),
+      options_(options),
+      views_(workspace_, options.window),
+      steps_(views_, options.errors) {}
+
+Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion criterion) const {
+  const std::size_t n = workspace_.objects.size();
+  for (const auto& [what, id] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
+    if (id >= n) {
+      throw MapError(fmt::format("{} object {} does not exist (the world has objects 0..{})", what, id,
+                                 static_cast<long long>(n) - 1));
+    }
+  }
+  if (start == goal) throw MapError(fmt::format("start and goal are the same object ({})", start));
+
+  // Nodes: 4 per object (its placements) and one goal node. A step that reaches the goal ends
+  // there, without adjusting: the navigator only has to identify it.
+  const auto goal_node = static_cast<std::uint32_t>(4 * n);
+  PlanGraph graph(4 * n + 1);
+  std::vector<std::uint32_t> step_of_edge;
+  const std::vector<Step>& all = steps_.steps();
+  for (std::uint32_t node = 0; node < goal_node; ++node) {
+    const auto [begin, end] = steps_.range(node);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Step& s = all[i];
+      if (s.landmark == goal) {
+        if (s.adjust != kCorners.front()) continue;  // one arrival edge per way of reaching it
+        graph.add_edge({node, goal_node, s.arrival_travel, s.unreliability()});
+      } else {
+        graph.add_edge({node, Placement{s.landmark, s.adjust}.node(), s.travel, s.unreliability()});
+      }
+      step_of_edge.push_back(i);
+    }
+  }
+  std::vector<std::uint32_t> sources;
+  for (const Corner c : kCorners) sources.push_back(Placement{start, c}.node());
+  const std::uint32_t targets[] = {goal_node};
+  const auto path = plan_path(graph, sources, targets, criterion);
+  if (!path) {
+    throw UnreachableGoal(
+        fmt::format("goal {} cannot be reached from {}: no chain of parkway steps and trajectories "
+                    "leads there",
+                    goal, start));
+  }
+
+  Route route;
+  route.start = start;
+  route.goal = goal;
+  route.criterion = criterion;
+  route.distance = path->distance;
+  route.unreliability = path->unreliability;
+  route.start_corner = all[step_of_edge[path->edges.front()]].from.corner;
+  route.custom_map.entries.push_back({Description::Any, std::nullopt, {}, route.start_corner});
+  for (std::size_t k = 0; k < path->edges.size(); ++k) {
+    const std::uint32_t e = path->edges[k];
+    const bool last = k + 1 == path->edges.size();
+    RouteStep rs;
+    rs.step = all[step_of_edge[e]];
+    rs.distance = graph.edges()[e].distance;
+    const Step& s = rs.step;
+    std::vector<std::uint32_t> confusable;
+    if (s.slide) {
+      const auto t = trajectory_from(views_, s.from, s.seek, *s.slide);
+      confusable = confusable_on_trajectory(views_, *t, options_.errors);
+    } else {
+      confusable = confusable_in_view(views_, s.from, s.landmark, s.seek);
+    }
+    rs.check = check_step(views_, s.landmark, confusable);
+    rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust)};
+    route.landmark_distance += s.landmark_distance;
+    route.custom_map.entries.push_back(rs.entry);
+    route.steps.push_back(std::move(rs));
+  }
+  return route;
+}
+
+std::string route_table(const Route& route) {
+  std::string out = fmt::format("{:>6} {:>6} {:<7} {:>9} {:>8} {:>9}  {}\n", "FROM", "TO", "DESC", "DISTANCE", "UNPROB",
+                                "COST", "VERIFICATION");
+  for (const RouteStep& rs : route.steps) {
+    const Step& s = rs.step;
+    const std::string desc = s.slide ? (*s.slide == Direction::positive ? "TRAJP" : "TRAJN")
+                                     : (s.seek == Description::Obvious ? "OBVIOUS" : "ISOL");
+    const double u = s.unreliability();
+    double cost = rs.distance;
+    if (route.criterion == CostCriterion::reliability) cost = u;
+    if (route.criterion == CostCriterion::ratio) cost = rs.distance * std::exp(u);
+    out += fmt::format("{:>6} {:>6} {:<7} {:>9.3f} {:>8.3f} {:>9.3f}  {}\n", s.from.object, s.landmark, desc,
+                       rs.distance, u, cost, verification_line(rs.check));
+  }
+  out += fmt::format("total: D {:.3f} mm, U {:.3f}, D/R {:.3f}, landmark-based distance {:.3f} mm, {} steps\n",
+                     route.distance, route.unreliability, route.ratio(), route.landmark_distance, route.steps.size());
+  return out;
+}
+
+}  // namespace neopipe::nav::mapmaker

@@ -1,0 +1,61 @@
+#include "nav/mapmaker/steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace neopipe::nav::mapmaker {
+
+double Step::unreliability() const {
+  return reliability >= 1 ? 0.0 : -std::log(std::max(reliability, 1e-300));
+}
+
+StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
+  const std::uint32_t nodes = static_cast<std::uint32_t>(4 * views.object_count());
+  first_.reserve(nodes + 1);
+  first_.push_back(0);
+  std::vector<Step> group;
+  for (std::uint32_t node = 0; node < nodes; ++node) {
+    const Placement from = Placement::of_node(node);
+    const Eigen::Vector2d start = views.origin(from);
+    const Eigen::Vector2d reference = views.position(from.object);
+    const int visible = static_cast<int>(views.visible(from).size());
+    const double selection = selection_reliability(visible, errors.sigma);
+    group.clear();
+    const auto add = [&](Step s, const Eigen::Vector2d& found_at) {
+      s.landmark_distance = (views.position(s.landmark) - reference).norm();
+      for (const Corner m : kCorners) {
+        s.adjust = m;
+        s.travel = s.arrival_travel + (views.origin({s.landmark, m}) - found_at).norm();
+        group.push_back(s);
+      }
+    };
+    const bool obvious = views.obvious(from).has_value();
+    const Description seek = obvious ? Description::Obvious : Description::Isol;
+    if (const auto landmark = views.landmark(from, seek)) {
+      Step s;
+      s.from = from;
+      s.landmark = s.via = *landmark;
+      s.seek = seek;
+      s.visible = visible;
+      s.reliability = selection;
+      add(s, start);
+      for (const Direction dir : {Direction::positive, Direction::negative}) {
+        const auto t = trajectory_from(views, from, seek, dir);
+        if (!t) continue;
+        trajectories_.push_back(*t);
+        Step ts = s;
+        ts.landmark = t->to;
+        ts.slide = dir;
+        ts.arrival_travel = t->slide;
+        ts.reliability = selection * trajectory_reliability(views, *t, errors);
+        add(ts, start + t->slide * t->heading(views));
+      }
+    }
+    std::stable_sort(group.begin(), group.end(),
+                     [](const Step& a, const Step& b) { return a.landmark_distance > b.landmark_distance; });
+    steps_.insert(steps_.end(), group.begin(), group.end());
+    first_.push_back(static_cast<std::uint32_t>(steps_.size()));
+  }
+}
+
+}  // namespace neopipe::nav::mapmaker

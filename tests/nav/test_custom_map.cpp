@@ -1,0 +1,86 @@
+// The custom map's text grammar (park-kender.md §8): the paper's examples read and write back.
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "nav/common/custom_map.hpp"
+
+namespace neopipe::nav {
+namespace {
+
+TEST(CustomMap, ReadsThePapersFig17Entry) {
+  const CustomMap m = parse_custom_map("((Isol, (4, SW, Isol), (2, SE, Isol), (3, -), SW))");
+  ASSERT_EQ(m.entries.size(), 1u);
+  const MapEntry& e = m.entries[0];
+  EXPECT_EQ(e.seek, Description::Isol);
+  EXPECT_FALSE(e.slide);
+  EXPECT_EQ(e.adjust, Corner::SW);
+  ASSERT_EQ(e.rules.size(), 3u);
+  EXPECT_EQ(e.verified_qoc(), 3);
+  ASSERT_NE(e.recovery_for(4), nullptr);
+  EXPECT_EQ(e.recovery_for(4)->corner, Corner::SW);
+  EXPECT_EQ(e.recovery_for(2)->corner, Corner::SE);
+  EXPECT_EQ(e.recovery_for(1), nullptr);
+  EXPECT_EQ(format_custom_map(m), "((Isol, (4, SW, Isol), (2, SE, Isol), (3, -), SW))");
+}
+
+TEST(CustomMap, ReadsThePapersSection634MapWithATrajectoryAndAGoal) {
+  // §6.3.4, as printed (no spaces).
+  const CustomMap m = parse_custom_map("((Isol,SE),(Isol,NE),(Isol,NE),(Isol,Trajp,(2,NW,Isol),(1,-),-))");
+  ASSERT_EQ(m.entries.size(), 4u);
+  EXPECT_EQ(m.entries[3].slide, Direction::positive);
+  EXPECT_FALSE(m.entries[3].adjust);
+  EXPECT_EQ(m.entries[3].verified_qoc(), 1);
+  EXPECT_EQ(parse_custom_map(format_custom_map(m)), m);
+  EXPECT_EQ(format_entry(m.entries[0]), "(Isol, SE)");
+  EXPECT_EQ(parse_custom_map("((*, SW), (Obvious, Trajn, -))").entries[1].slide, Direction::negative);
+}
+
+TEST(CustomMap, RandomMapsRoundTrip) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 500; ++trial) {
+    CustomMap m;
+    const int n = static_cast<int>(rng() % 6);
+    for (int i = 0; i < n; ++i) {
+      MapEntry e;
+      e.seek = static_cast<Description>(rng() % 3);
+      if (rng() % 3 == 0) e.slide = rng() % 2 ? Direction::positive : Direction::negative;
+      const int rules = static_cast<int>(rng() % 4);
+      for (int r = 0; r < rules; ++r) {
+        RecoveryRule rule{static_cast<int>(rng() % 5), std::nullopt, Description::Isol};
+        if (rng() % 4) {
+          rule.corner = kCorners[rng() % 4];
+          rule.seek = static_cast<Description>(rng() % 3);
+        }
+        e.rules.push_back(rule);
+      }
+      if (rng() % 5) e.adjust = kCorners[rng() % 4];
+      m.entries.push_back(e);
+    }
+    ASSERT_EQ(parse_custom_map(format_custom_map(m)), m) << format_custom_map(m);
+  }
+}
+
+TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
+  const auto message = [](const std::string& text) {
+    try {
+      parse_custom_map(text);
+    } catch (const CustomMapError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("((Isol, XX))"),
+            "custom map: at character 11: expected a corner (SE, SW, NE, NW) or -, found 'XX'");
+  EXPECT_EQ(message("((Isle, SW))"),
+            "custom map: at character 7: expected a description (Obvious, Isol or *), found 'Isle'");
+  EXPECT_EQ(message("((Isol, (7, SW, Isol), SW))"), "custom map: at character 11: expected a QOC 0..4, found '7'");
+  EXPECT_EQ(message("((Isol, SW)"), "custom map: at character 12: expected ')', found 'the end'");
+  EXPECT_EQ(message("((Isol, SW)) extra"), "custom map: at character 14: expected end of the map, found 'e'");
+  EXPECT_EQ(message("((Isol, (2, -), Trajp, SW))"),
+            "custom map: at character 22: expected a recovery rule or a corner, found 'Trajp'");
+}
+
+}  // namespace
+}  // namespace neopipe::nav

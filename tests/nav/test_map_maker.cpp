@@ -1,0 +1,204 @@
+// The map-maker end to end: routes on hand-made and random worlds, replayed step by step with the
+// shared descriptors as an error-free navigator would, checked against brute force.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include "nav/mapmaker/map_maker.hpp"
+
+namespace neopipe::nav::mapmaker {
+namespace {
+
+using Eigen::Vector2d;
+
+Workspace random_workspace(int n, double side, std::uint64_t seed, double min_gap = 8) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(2, side - 2);
+  Workspace w{{side, side}, {}};
+  while (static_cast<int>(w.objects.size()) < n) {
+    const Vector2d p(u(rng), u(rng));
+    bool free = true;
+    for (const Vector2d& q : w.objects) free = free && (p - q).norm() >= min_gap;
+    if (free) w.objects.push_back(p);
+  }
+  return w;
+}
+
+// What an error-free navigator does with the custom map: returns the object it ends on and the
+// window travel, or nullopt when an entry cannot be carried out.
+struct Replay {
+  std::uint32_t end = 0;
+  double travel = 0;
+};
+std::optional<Replay> replay(const WorldViews& views, std::uint32_t start, const CustomMap& map) {
+  if (map.entries.empty() || map.entries[0].seek != Description::Any || !map.entries[0].adjust) return std::nullopt;
+  Placement at{start, *map.entries[0].adjust};
+  Replay r;
+  for (std::size_t k = 1; k < map.entries.size(); ++k) {
+    const MapEntry& e = map.entries[k];
+    const auto found = views.landmark(at, e.seek);
+    if (!found) return std::nullopt;
+    std::uint32_t landmark = *found;
+    Vector2d window = views.origin(at);
+    if (e.slide) {
+      Vector2d d = (views.position(landmark) - views.position(at.object)).normalized();
+      if (*e.slide == Direction::negative) d = -d;
+      const auto hit = first_entering(views.grid(), views.window(), window, d, views.position(at.object));
+      if (!hit) return std::nullopt;
+      landmark = hit->object;
+      window += hit->slide * d;
+      r.travel += hit->slide;
+    }
+    // Verification: the landmark reached must show the QOC the map expects.
+    if (const auto q = e.verified_qoc()) {
+      if (views.qoc(landmark) != *q) return std::nullopt;
+    }
+    if (!e.adjust) {
+      if (k + 1 != map.entries.size()) return std::nullopt;
+      r.end = landmark;
+      return r;
+    }
+    at = {landmark, *e.adjust};
+    r.travel += (views.origin(at) - window).norm();
+  }
+  return std::nullopt;
+}
+
+TEST(MapMaker, RoutesReplayToTheGoalWithTheirDistanceOnRandomWorlds) {
+  int routes = 0;
+  int unreachable = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const MapMaker maker(random_workspace(60, 300, seed), MapMakerOptions{});
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    for (int trial = 0; trial < 15; ++trial) {
+      const std::uint32_t a = rng() % 60;
+      const std::uint32_t b = (a + 1 + rng() % 59) % 60;
+      for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+        Route route;
+        try {
+          route = maker.plan(a, b, c);
+        } catch (const UnreachableGoal&) {
+          ++unreachable;
+          continue;
+        }
+        ++routes;
+        const auto r = replay(maker.views(), a, route.custom_map);
+        ASSERT_TRUE(r) << a << "->" << b << " " << format_custom_map(route.custom_map);
+        EXPECT_EQ(r->end, b);
+        EXPECT_NEAR(r->travel, route.distance, 1e-9 * (1 + route.distance));
+        double u = 0;
+        for (const RouteStep& s : route.steps) u += s.step.unreliability();
+        EXPECT_NEAR(u, route.unreliability, 1e-12);
+      }
+    }
+  }
+  EXPECT_GT(routes, 100);
+  std::cout << routes << " routes replayed, " << unreachable << " unreachable\n";
+}
+
+TEST(MapMaker, TheThreeCriteriaOrderAsThePaperFinds) {
+  const MapMaker maker(random_workspace(150, 400, 42, 6), MapMakerOptions{});
+  int compared = 0;
+  for (std::uint32_t a = 0; a < 150; a += 7) {
+    const std::uint32_t b = (a * 37 + 11) % 150;
+    if (a == b) continue;
+    try {
+      const Route d = maker.plan(a, b, CostCriterion::distance);
+      const Route u = maker.plan(a, b, CostCriterion::reliability);
+      const Route r = maker.plan(a, b, CostCriterion::ratio);
+      EXPECT_LE(d.distance, r.distance + 1e-9);
+      EXPECT_LE(d.distance, u.distance + 1e-9);
+      EXPECT_LE(u.unreliability, r.unreliability + 1e-12);
+      EXPECT_LE(u.unreliability, d.unreliability + 1e-12);
+      EXPECT_LE(r.ratio(), d.ratio() * (1 + 1e-12));
+      EXPECT_LE(r.ratio(), u.ratio() * (1 + 1e-12));
+      ++compared;
+    } catch (const UnreachableGoal&) {
+    }
+  }
+  EXPECT_GT(compared, 5);
+}
+
+TEST(MapMaker, ShortestRouteEqualsBruteForceOverAllSimpleStepSequences) {
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const MapMaker maker(random_workspace(7, 110, seed, 10), MapMakerOptions{});
+    const std::vector<Step>& steps = maker.steps().steps();
+    for (std::uint32_t a = 0; a < 7; ++a) {
+      for (std::uint32_t b = 0; b < 7; ++b) {
+        if (a == b) continue;
+        // Depth-first over simple paths of placements.
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<bool> used(28, false);
+        std::function<void(std::uint32_t, double)> walk = [&](std::uint32_t node, double d) {
+          const auto [begin, end] = maker.steps().range(node);
+          for (std::uint32_t i = begin; i < end; ++i) {
+            const Step& s = steps[i];
+            if (s.landmark == b) {
+              best = std::min(best, d + s.arrival_travel);
+              continue;
+            }
+            const std::uint32_t next = Placement{s.landmark, s.adjust}.node();
+            if (used[next]) continue;
+            used[next] = true;
+            walk(next, d + s.travel);
+            used[next] = false;
+          }
+        };
+        for (const Corner c : kCorners) {
+          used.assign(28, false);
+          used[Placement{a, c}.node()] = true;
+          walk(Placement{a, c}.node(), 0);
+        }
+        if (std::isinf(best)) {
+          EXPECT_THROW(maker.plan(a, b, CostCriterion::distance), UnreachableGoal);
+        } else {
+          EXPECT_NEAR(maker.plan(a, b, CostCriterion::distance).distance, best, 1e-9) << seed << " " << a << " " << b;
+        }
+      }
+    }
+  }
+}
+
+TEST(MapMaker, ChainOfObviousLandmarksGivesTheObviousMap) {
+  // Four objects 30 mm apart going North-East in a wide world: each sees only the next one.
+  const Workspace w{{400, 400}, {{100, 100}, {130, 130}, {160, 160}, {190, 190}}};
+  const MapMaker maker(w, MapMakerOptions{});
+  const Route r = maker.plan(0, 3, CostCriterion::reliability);
+  EXPECT_DOUBLE_EQ(r.unreliability, 0.0);  // every step obvious
+  for (const RouteStep& s : r.steps) EXPECT_EQ(s.check.kind, Verifiability::trivial);
+  const auto end = replay(maker.views(), 0, r.custom_map);
+  ASSERT_TRUE(end);
+  EXPECT_EQ(end->end, 3u);
+}
+
+TEST(MapMaker, RejectsBadRequestsAndSaysWhenTheGoalIsUnreachable) {
+  // Two pairs 300 mm apart on a diagonal: no window holds both, and no trajectory direction of
+  // one pair (along its own axis) meets the other.
+  const Workspace w{{600, 600}, {{50, 50}, {50, 70}, {400, 550}, {420, 550}}};
+  const MapMaker maker(w, MapMakerOptions{});
+  EXPECT_THROW(maker.plan(0, 0, CostCriterion::distance), MapError);
+  EXPECT_THROW(maker.plan(0, 9, CostCriterion::distance), MapError);
+  EXPECT_THROW(maker.plan(0, 2, CostCriterion::distance), UnreachableGoal);
+  EXPECT_NO_THROW(maker.plan(0, 1, CostCriterion::distance));
+}
+
+TEST(MapMaker, SameWorldSameRoute) {
+  const Workspace w = random_workspace(80, 300, 5);
+  const MapMaker a(w, MapMakerOptions{});
+  const MapMaker b(w, MapMakerOptions{});
+  for (std::uint32_t s = 1; s < 80; s += 13) {
+    try {
+      const Route ra = a.plan(0, s, CostCriterion::ratio);
+      const Route rb = b.plan(0, s, CostCriterion::ratio);
+      EXPECT_EQ(ra.custom_map, rb.custom_map);
+      EXPECT_EQ(ra.distance, rb.distance);
+    } catch (const UnreachableGoal&) {
+    }
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::mapmaker
