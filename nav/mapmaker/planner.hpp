@@ -16,6 +16,7 @@ namespace neopipe::nav::mapmaker {
 
 enum class CostCriterion : std::uint8_t { distance, reliability, ratio };
 
+/// "distance", "reliability", "ratio"; parse_criterion accepts exactly these and nothing else.
 std::string_view criterion_name(CostCriterion c);
 std::optional<CostCriterion> parse_criterion(std::string_view text);
 
@@ -28,15 +29,18 @@ struct PlanEdge {
 
 /// A directed graph with nonnegative (D, U) edge costs. Edges keep their insertion index, which is
 /// how a path names them and how ties are broken: the caller inserts preferred edges first.
+/// The out-edge index is built lazily by the first query after an add_edge, so a graph shared
+/// between threads must be queried once (out_edges or plan_path) before it is shared.
 class PlanGraph {
  public:
+  /// Throws std::length_error when `nodes` does not fit a 32-bit node id.
   explicit PlanGraph(std::size_t nodes);
 
   std::size_t node_count() const { return first_out_.size() - 1; }
   const std::vector<PlanEdge>& edges() const { return edges_; }
 
   /// Returns the edge's index. Throws std::invalid_argument for a node out of range or a negative
-  /// or non-finite cost.
+  /// or non-finite cost; the message names the edge.
   std::uint32_t add_edge(const PlanEdge& edge);
 
   /// Indices of the edges leaving `node`, in insertion order. Valid after the last add_edge.
@@ -52,20 +56,37 @@ class PlanGraph {
 
 struct PlannedPath {
   std::vector<std::uint32_t> edges;  ///< edge indices, source to target
-  double distance = 0;               ///< sum of D
-  double unreliability = 0;          ///< sum of U
-  double ratio() const;              ///< D / R = D * exp(U)
+  double distance = 0;               ///< sum of D, added source to target
+  double unreliability = 0;          ///< sum of U, added source to target
+  double ratio() const;              ///< D / R = D * exp(U); 0 when D is 0, whatever U
+};
+
+/// What a search did, for benchmarks and for checking that memory follows the work done.
+struct PlanStats {
+  std::size_t labels_created = 0;  ///< heap entries: improved nodes (distance, reliability) or Pareto labels (ratio)
+  std::size_t labels_settled = 0;  ///< nodes settled or labels made permanent
 };
 
 /// The best path from any node of `sources` (starting at cost 0) to any node of `targets` under
-/// `criterion`; nullopt when no target is reachable. A source that is also a target gives the
-/// empty path.
+/// `criterion`; nullopt when no target is reachable (or either set is empty). A source that is
+/// also a target gives the empty path. Throws std::invalid_argument for a source or target out of
+/// range.
 ///
 /// Determinism and ties: distance compares (D, then U), reliability compares (U, then D), ratio
-/// compares (D e^U, then D, then U); a path is replaced only by a strictly better one; nodes are
-/// settled in order of (cost, node id) and edges relaxed in insertion order. So the same graph
-/// always gives the same path, and among equal paths the one using earlier-inserted edges wins.
+/// compares (D e^U, then D, then U); a path is replaced only by a strictly better one; nodes (ratio:
+/// labels) are settled in order of (cost, node id) and edges relaxed in insertion order. So the same
+/// graph always gives the same path. Among equal paths, the one that reaches each node first in that
+/// order wins: between parallel edges, or edges leaving the same node, the earlier-inserted one;
+/// between different predecessors of equal cost, the one with the smaller node id (settled first);
+/// between targets of equal cost, the smaller node id.
+///
+/// Cost: distance and reliability are Dijkstra, O(E log V). Ratio is a bi-criteria label-setting
+/// search whose work grows with the Pareto fronts of (D, U) at the nodes: small when D and U are
+/// positively correlated, as window travel and its unreliability are, but exponential in the worst
+/// case. Memory is proportional to the labels created (see PlanStats).
 std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std::uint32_t> sources,
                                      std::span<const std::uint32_t> targets, CostCriterion criterion);
+std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std::uint32_t> sources,
+                                     std::span<const std::uint32_t> targets, CostCriterion criterion, PlanStats& stats);
 
 }  // namespace neopipe::nav::mapmaker
