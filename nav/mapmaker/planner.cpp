@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace neopipe::nav::mapmaker {
 namespace {
@@ -109,6 +111,54 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
   return std::nullopt;
 }
 
+// The least D and the least U from every node to any target (independently), by Dijkstra on the
+// reversed edges; infinity where no target is reachable.
+struct RemainingCost {
+  std::vector<double> distance, unreliability;
+};
+
+std::vector<double> backwards_minimum(const PlanGraph& graph, const std::vector<char>& is_target,
+                                      const std::vector<std::uint32_t>& first_in,
+                                      const std::vector<std::uint32_t>& in_edges, double PlanEdge::*cost) {
+  using Entry = std::pair<double, std::uint32_t>;
+  std::vector<double> best(graph.node_count(), kInf);
+  std::vector<Entry> heap;
+  for (std::uint32_t v = 0; v < graph.node_count(); ++v)
+    if (is_target[v]) {
+      best[v] = 0;
+      heap.emplace_back(0, v);
+    }
+  const auto later = std::greater<Entry>();
+  std::make_heap(heap.begin(), heap.end(), later);
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [c, v] = heap.back();
+    heap.pop_back();
+    if (c > best[v]) continue;
+    for (std::uint32_t i = first_in[v]; i < first_in[v + 1]; ++i) {
+      const PlanEdge& edge = graph.edges()[in_edges[i]];
+      const double through = c + edge.*cost;
+      if (through < best[edge.from]) {
+        best[edge.from] = through;
+        heap.emplace_back(through, edge.from);
+        std::push_heap(heap.begin(), heap.end(), later);
+      }
+    }
+  }
+  return best;
+}
+
+RemainingCost remaining_cost(const PlanGraph& graph, const std::vector<char>& is_target) {
+  std::vector<std::uint32_t> first_in(graph.node_count() + 1, 0);
+  for (const PlanEdge& e : graph.edges()) ++first_in[e.to + 1];
+  for (std::size_t v = 1; v < first_in.size(); ++v) first_in[v] += first_in[v - 1];
+  std::vector<std::uint32_t> in_edges(graph.edges().size());
+  std::vector<std::uint32_t> cursor(first_in.begin(), first_in.end() - 1);
+  for (std::uint32_t i = 0; i < graph.edges().size(); ++i) in_edges[cursor[graph.edges()[i].to]++] = i;
+  return {backwards_minimum(graph, is_target, first_in, in_edges, &PlanEdge::distance),
+          backwards_minimum(graph, is_target, first_in, in_edges, &PlanEdge::unreliability)};
+}
+
 // The compromise min D e^U by bi-criteria label setting over (D, U).
 //
 // Why Pareto labels suffice: f(D, U) = D e^U is nondecreasing in D (e^U > 0) and in U (D >= 0). If
@@ -127,11 +177,23 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
 // Pruning: any label whose (f, D, U) is strictly worse than a target label already created cannot
 // lead anywhere better, since extending it never decreases f, D or U. And labels come out in D order
 // with f >= D, so once D exceeds the best target's f the search is over.
+//
+// Bounds (what keeps large worlds fast): the bound starts at the better of the min-D and min-U paths
+// (both are real paths, so the optimum is no worse), and every completion of a label at node v costs
+// at least (D + hD(v)) e^(U + hU(v)), hD and hU being v's exact remaining minima found by Dijkstra
+// backwards from the targets. A label whose lower bound exceeds the bound is dropped, and so is a
+// label at a node from which no target is reachable. The relative slack covers the rounding of
+// adding the remaining minima in another order than a path adds them; a label dropped this way is
+// strictly worse than the bound, and so is everything it dominates, so the path chosen is the same
+// as without the bounds.
 class RatioSearch {
  public:
-  RatioSearch(const PlanGraph& graph, const std::vector<char>& is_target, PlanStats& stats)
+  RatioSearch(const PlanGraph& graph, const std::vector<char>& is_target, const RemainingCost& remaining,
+              const PlannedPath& incumbent, PlanStats& stats)
       : graph_(graph),
         is_target_(is_target),
+        remaining_(remaining),
+        incumbent_(key_of(incumbent.distance, incumbent.unreliability)),
         stats_(stats),
         min_permanent_u_(graph.node_count(), kInf),
         temporary_head_(graph.node_count(), kNone) {}
@@ -203,6 +265,10 @@ class RatioSearch {
 
   void add_label(double d, double u, std::uint32_t node, std::uint32_t pred, std::uint32_t edge) {
     if (u >= min_permanent_u_[node]) return;
+    const double rest_d = remaining_.distance[node];
+    if (rest_d == kInf) return;  // no target is reachable from here
+    const Key& best = bound_.ratio < kInf ? bound_ : incumbent_;
+    if (ratio_of(d + rest_d, u + remaining_.unreliability[node]) > best.ratio * (1 + kBoundSlack)) return;
     // Until a target label exists nothing can be pruned, so skip the exp.
     const Key key = bound_.ratio < kInf || is_target_[node] ? key_of(d, u) : Key{kInf, d, u};
     if (bound_ < key) return;
@@ -229,8 +295,12 @@ class RatioSearch {
     if (is_target_[node] && key < bound_) bound_ = key;
   }
 
+  static constexpr double kBoundSlack = 1e-9;
+
   const PlanGraph& graph_;
   const std::vector<char>& is_target_;
+  const RemainingCost& remaining_;
+  const Key incumbent_;  ///< a path known to exist: the optimum is no worse
   PlanStats& stats_;
   std::vector<double> min_permanent_u_;
   std::vector<std::uint32_t> temporary_head_;
@@ -319,8 +389,15 @@ std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std
       return dijkstra<true>(graph, sources, is_target, stats);
     case CostCriterion::reliability:
       return dijkstra<false>(graph, sources, is_target, stats);
-    case CostCriterion::ratio:
-      return RatioSearch(graph, is_target, stats).run(sources);
+    case CostCriterion::ratio: {
+      // The two Dijkstra paths answer "is there any path" cheaply (the label search would otherwise
+      // explore every Pareto label before finding none) and give the label search its first bound.
+      const auto shortest = dijkstra<true>(graph, sources, is_target, stats);
+      if (!shortest) return std::nullopt;
+      const auto most_reliable = dijkstra<false>(graph, sources, is_target, stats);
+      const PlannedPath& incumbent = shortest->ratio() <= most_reliable->ratio() ? *shortest : *most_reliable;
+      return RatioSearch(graph, is_target, remaining_cost(graph, is_target), incumbent, stats).run(sources);
+    }
   }
   return std::nullopt;
 }

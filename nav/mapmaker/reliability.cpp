@@ -1,16 +1,196 @@
 #include "nav/mapmaker/reliability.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 
-// TEMPORARY stand-in so the map-maker links while branch nav-reliability fits the real function.
 namespace neopipe::nav::mapmaker {
+namespace {
 
-double selection_reliability(int visible, double sigma) {
-  return visible <= 2 ? 1.0 : std::exp(-0.05 * sigma * (visible - 2));
+double normal_cdf(double z) {
+  return 0.5 * std::erfc(-z / std::numbers::sqrt2);
 }
 
-double trajectory_reliability(const WorldViews&, const Trajectory&, const NavigatorErrors&) {
-  return 0.9;
+// Beyond this many standard deviations a bound changes R by less than 3e-7: not worth a look.
+constexpr double kReach = 5.0;
+
+// neopipe_reliability_fit --trials 4000 --seed 1 (docs/navigation.md has the table and the errors).
+constexpr double kFittedLogK = 0.478903;
+constexpr double kFittedBeta = 1.075169;
+constexpr double kFittedGamma = 1.011016;
+
+struct OffsetBound {
+  double slide;  ///< where along the slide
+  double limit;  ///< the offset across the track that must not be crossed
+  bool below;    ///< success needs offset < limit (else offset > limit)
+};
+
+// E f(Z) for Z ~ N(0, 1) by the midpoint rule on [-6, 6]: the integrands are bounded step-like
+// functions of Z (an interval's probability), for which more nodes beat a higher-order rule.
+struct NormalQuadrature {
+  std::vector<double> nodes, weights;
+};
+
+NormalQuadrature normal_quadrature() {
+  constexpr int kNodes = 64;
+  constexpr double kSpan = 6.0;
+  NormalQuadrature q;
+  double total = 0;
+  for (int k = 0; k < kNodes; ++k) {
+    const double x = -kSpan + (k + 0.5) * 2 * kSpan / kNodes;
+    q.nodes.push_back(x);
+    q.weights.push_back(std::exp(-x * x / 2));
+    total += q.weights.back();
+  }
+  for (double& w : q.weights) w /= total;
+  return q;
+}
+
+// What the navigator sees at the start decides what may enter: the window's placement error can
+// put a goal that enters early already in view (then it is not seen entering), or move an object of
+// the view just outside the leading edges (then it enters first). Along each axis of travel the edge
+// moves by a normal error of sd sigma; these events are taken as independent of the offset above.
+double start_view_agrees(const WorldViews& views, const Trajectory& trajectory, const Eigen::Vector2d& heading,
+                         const Eigen::Vector2d& start, double sigma) {
+  if (!(sigma > 0)) return 1.0;
+  const double a = views.window().side;
+  // Depth of p inside the window behind the leading edge of each axis (negative: ahead of it).
+  const auto depth = [&](const Eigen::Vector2d& p, int axis) {
+    return heading[axis] > 0 ? start[axis] + a - p[axis] : p[axis] - start[axis];
+  };
+  double agrees = 1.0;
+  const Eigen::Vector2d goal = views.position(trajectory.to);
+  for (int axis = 0; axis < 2; ++axis) {
+    if (heading[axis] == 0) continue;
+    const double ahead = -depth(goal, axis);  // > 0 on the axis the goal enters by
+    if (ahead > 0 && ahead < kReach * sigma) agrees *= normal_cdf(ahead / sigma);
+  }
+  for (const std::uint32_t id : views.visible(trajectory.from)) {
+    if (id == trajectory.from.object || id == trajectory.via) continue;  // known: never taken for the goal
+    for (int axis = 0; axis < 2; ++axis) {
+      if (heading[axis] == 0) continue;
+      const double d = depth(views.position(id), axis);
+      if (d < kReach * sigma) agrees *= normal_cdf(d / sigma);
+    }
+  }
+  return agrees;
+}
+
+}  // namespace
+
+double SelectionReliabilityModel::operator()(int visible, double relative_sigma) const {
+  if (visible <= 2 || !(relative_sigma > 0)) return 1.0;
+  const double log_odds = log_k + beta * std::log(visible - 2.0) + gamma * std::log(relative_sigma);
+  return 1.0 / (1.0 + std::exp(log_odds));
+}
+
+SelectionReliabilityModel fitted_selection_model() {
+  return {kFittedLogK, kFittedBeta, kFittedGamma};
+}
+
+double selection_reliability(int visible, double sigma, double window_side) {
+  return fitted_selection_model()(visible, sigma / window_side);
+}
+
+double trajectory_reliability(const WorldViews& views, const Trajectory& trajectory, const NavigatorErrors& errors) {
+  const Eigen::Vector2d heading = trajectory.heading(views);
+  const Eigen::Vector2d across(-heading.y(), heading.x());
+  const Eigen::Vector2d start = views.origin(trajectory.from);
+  const double baseline = (views.position(trajectory.via) - views.position(trajectory.from.object)).norm();
+  // Across the track the slide is off by d(s) = -e c(s) + s g at distance s: e ~ N(0, sigma^2) is
+  // the reference's measurement error (it places the window, and it tilts the direction, hence
+  // c(s) = 1 +- s/L by the direction), g ~ N(0, sigma_g^2) the landmark's error over the baseline
+  // plus the motion's heading error, lumped at the goal's distance as the Monte Carlo model does.
+  const double towards = trajectory.direction == Direction::positive ? 1.0 : -1.0;
+  const double sigma = errors.sigma;
+  const double motion = std::hypot(errors.translation_per_mm, errors.rotation_per_mm * trajectory.slide / 2);
+  const double sigma_g = std::hypot(sigma / baseline, motion);
+  const auto c = [&](double s) { return 1 + towards * s / baseline; };
+  const auto sd = [&](double s) { return std::hypot(sigma * c(s), s * sigma_g); };
+  const double widest = std::max(sd(0), sd(trajectory.slide));
+  if (!(widest > 0)) return 1.0;
+
+  // The band the window sweeps, across the track.
+  const double a = views.window().side;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Eigen::Vector2d& corner : std::array<Eigen::Vector2d, 4>{
+           {Eigen::Vector2d(0, 0), Eigen::Vector2d(a, 0), Eigen::Vector2d(0, a), Eigen::Vector2d(a, a)}}) {
+    const double w = across.dot(start + corner);
+    lo = std::min(lo, w);
+    hi = std::max(hi, w);
+  }
+  // Conditions for success, each d(s) < limit (below) or d(s) > limit: the goal stays in the band...
+  const double w_goal = across.dot(views.position(trajectory.to));
+  std::vector<OffsetBound> bounds{{trajectory.slide, w_goal - lo, true}, {trajectory.slide, w_goal - hi, false}};
+  // ...no object beside the band is swept before the goal, and no object in the band that enters
+  // soon after the goal overtakes it. Scanned in segments as first_entering does, widened by the reach
+  // of the largest offset; an object seen twice adds the same bound twice, which changes nothing.
+  const ObjectGrid& grid = views.grid();
+  const std::span<const Eigen::Vector2d> objects = grid.objects();
+  const double reach = kReach * widest;
+  const Eigen::Vector2d widen(a + reach, a + reach);
+  const double nudge = 1e-9 * a;
+  const double behind = trajectory.slide + std::numbers::sqrt2 * a;  // a later entry cannot overtake
+  const Eigen::Vector2d goal = views.position(trajectory.to);
+  const auto entry = [&](double shift, const Eigen::Vector2d& p) {
+    return entry_distance(views.window(), start + shift * across, heading, p);
+  };
+  // How the goal's entry moves with the offset: objects entering by another edge move differently.
+  const double probe = 1e-3 * a;
+  const auto goal_up = entry(probe, goal), goal_down = entry(-probe, goal);
+  for (double t0 = 0; t0 < behind; t0 += grid.cell()) {
+    const double t1 = std::min(t0 + grid.cell(), behind);
+    const Eigen::Vector2d p0 = start + t0 * heading, p1 = start + t1 * heading;
+    grid.for_each_near(p0.cwiseMin(p1) - Eigen::Vector2d(reach, reach), p0.cwiseMax(p1) + widen, [&](std::uint32_t id) {
+      if (id == trajectory.to) return;
+      const double w = across.dot(objects[id]);
+      if (w > lo && w < hi) {
+        const auto t = entry(0, objects[id]);
+        if (!t || *t >= behind || !goal_up || !goal_down) return;
+        const auto up = entry(probe, objects[id]), down = entry(-probe, objects[id]);
+        if (!up || !down) return;
+        const double closing = ((*up - *goal_up) - (*down - *goal_down)) / (2 * probe);
+        if (std::abs(closing) < 1e-9) return;  // same edge: the order holds whatever the offset
+        const double overtake = -(*t - trajectory.slide) / closing;
+        if (std::abs(overtake) <= reach) bounds.push_back({trajectory.slide, overtake, closing < 0});
+        return;
+      }
+      const double shift = w >= hi ? w - hi + nudge : w - lo - nudge;
+      if (std::abs(shift) > reach) return;
+      const auto t = entry(shift, objects[id]);
+      if (t && *t < trajectory.slide) bounds.push_back({*t, shift, shift > 0});
+    });
+  }
+
+  // For each g (quadrature over its normal law) the bounds leave an interval of e; integrate its probability.
+  static const NormalQuadrature rule = normal_quadrature();
+  double reliability = 0;
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+    const double g = sigma_g * rule.nodes[k];
+    double e_lo = -std::numeric_limits<double>::infinity(), e_hi = -e_lo;
+    bool possible = true;
+    for (const OffsetBound& b : bounds) {
+      // -e c + s g < limit (below) or > limit: solve for e.
+      const double cs = c(b.slide), rest = b.limit - b.slide * g;
+      if (std::abs(cs) < 1e-12) {
+        possible = possible && (b.below ? rest > 0 : rest < 0);
+        continue;
+      }
+      const double e = -rest / cs;  // the boundary value of e
+      const bool e_above = (cs > 0) == b.below;
+      if (e_above) {
+        e_lo = std::max(e_lo, e);
+      } else {
+        e_hi = std::min(e_hi, e);
+      }
+    }
+    if (!possible || !(e_hi > e_lo)) continue;
+    const double p = sigma > 0 ? normal_cdf(e_hi / sigma) - normal_cdf(e_lo / sigma) : (e_lo < 0 && e_hi > 0 ? 1 : 0);
+    reliability += rule.weights[k] * p;
+  }
+  return std::clamp(reliability * start_view_agrees(views, trajectory, heading, start, sigma), 0.0, 1.0);
 }
 
 }  // namespace neopipe::nav::mapmaker

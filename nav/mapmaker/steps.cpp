@@ -19,7 +19,7 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
     const Eigen::Vector2d start = views.origin(from);
     const Eigen::Vector2d reference = views.position(from.object);
     const int visible = static_cast<int>(views.visible(from).size());
-    const double selection = selection_reliability(visible, errors.sigma);
+    const double selection = selection_reliability(visible, errors.sigma, views.window().side);
     group.clear();
     const auto add = [&](Step s, const Eigen::Vector2d& found_at) {
       s.landmark_distance = (views.position(s.landmark) - reference).norm();

@@ -32,6 +32,12 @@ std::optional<double> entry_distance(const WindowModel& window, const Eigen::Vec
 std::optional<TrajectoryHit> first_entering(const ObjectGrid& grid, const WindowModel& window,
                                             const Eigen::Vector2d& start, const Eigen::Vector2d& direction,
                                             const Eigen::Vector2d& reference) {
+  return first_entering(grid, window, start, direction, reference, {});
+}
+
+std::optional<TrajectoryHit> first_entering(const ObjectGrid& grid, const WindowModel& window,
+                                            const Eigen::Vector2d& start, const Eigen::Vector2d& direction,
+                                            const Eigen::Vector2d& reference, std::span<const std::uint32_t> ignore) {
   const std::span<const Eigen::Vector2d> objects = grid.objects();
   if (objects.empty()) return std::nullopt;
   // Sweep in segments of one cell: an object entering at t lies in the closure of the window at t,
@@ -55,6 +61,7 @@ std::optional<TrajectoryHit> first_entering(const ObjectGrid& grid, const Window
       if (leaving) break;
     }
     grid.for_each_near(lo, hi, [&](std::uint32_t id) {
+      if (std::binary_search(ignore.begin(), ignore.end(), id)) return;
       const auto t = entry_distance(window, start, direction, objects[id]);
       if (!t) return;
       if (!best || *t < best->slide ||

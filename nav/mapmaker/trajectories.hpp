@@ -28,6 +28,11 @@ struct TrajectoryHit {
 std::optional<TrajectoryHit> first_entering(const ObjectGrid& grid, const WindowModel& window,
                                             const Eigen::Vector2d& start, const Eigen::Vector2d& direction,
                                             const Eigen::Vector2d& reference);
+/// The same, not counting the objects in `ignore` (ascending ids): what the navigator already knows,
+/// the reference and the direction landmark, cannot be mistaken for the goal when they re-enter.
+std::optional<TrajectoryHit> first_entering(const ObjectGrid& grid, const WindowModel& window,
+                                            const Eigen::Vector2d& start, const Eigen::Vector2d& direction,
+                                            const Eigen::Vector2d& reference, std::span<const std::uint32_t> ignore);
 
 /// Entry distance of `p` into the window sliding from `start` along `direction`: the smallest t >= 0
 /// at which p is strictly inside; none if it never is or is already inside at t = 0.

@@ -1,0 +1,260 @@
+// The planner against brute force: every simple path of small random graphs (cycles only add
+// nonnegative cost, so the optimum is always simple), and a Pareto-front reference without any
+// pruning on larger graphs, where the ratio search's bounds do most of their work.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "nav/mapmaker/planner.hpp"
+
+namespace neopipe::nav::mapmaker {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double ratio_of(double d, double u) {
+  return d == 0 ? 0.0 : d * std::exp(u);
+}
+
+// Random graph with D and U positively correlated, as window travel and its unreliability are, plus
+// a share of edges where they disagree so the three criteria pick different paths.
+PlanGraph random_graph(std::uint32_t nodes, double density, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0, 1);
+  PlanGraph g(nodes);
+  for (std::uint32_t a = 0; a < nodes; ++a)
+    for (std::uint32_t b = 0; b < nodes; ++b) {
+      if (a == b || unit(rng) > density) continue;
+      const double d = std::round(unit(rng) * 100) / 4;  // quarters of a mm: exact ties happen
+      const double u = unit(rng) < 0.7 ? d * 0.004 * unit(rng) : 0.3 * unit(rng);
+      g.add_edge({a, b, d, u});
+    }
+  return g;
+}
+
+struct Best {
+  double d = kInf, u = kInf, r = kInf;
+};
+
+// Every simple path from `source` to `target` by depth-first search; keeps the best key per criterion.
+void enumerate(const PlanGraph& g, std::uint32_t v, std::uint32_t target, double d, double u, std::vector<char>& on_path,
+               Best& by_d, Best& by_u, Best& by_r) {
+  if (v == target) {
+    if (std::tie(d, u) < std::tie(by_d.d, by_d.u)) by_d = {d, u, ratio_of(d, u)};
+    if (std::tie(u, d) < std::tie(by_u.u, by_u.d)) by_u = {d, u, ratio_of(d, u)};
+    const double r = ratio_of(d, u);
+    if (std::tie(r, d, u) < std::tie(by_r.r, by_r.d, by_r.u)) by_r = {d, u, r};
+    return;
+  }
+  on_path[v] = 1;
+  for (const std::uint32_t e : g.out_edges(v)) {
+    const PlanEdge& edge = g.edges()[e];
+    if (on_path[edge.to]) continue;
+    enumerate(g, edge.to, target, d + edge.distance, u + edge.unreliability, on_path, by_d, by_u, by_r);
+  }
+  on_path[v] = 0;
+}
+
+void expect_valid_path(const PlanGraph& g, const PlannedPath& p, std::uint32_t source, std::uint32_t target) {
+  ASSERT_FALSE(p.edges.empty());
+  EXPECT_EQ(g.edges()[p.edges.front()].from, source);
+  EXPECT_EQ(g.edges()[p.edges.back()].to, target);
+  double d = 0, u = 0;
+  for (std::size_t k = 0; k < p.edges.size(); ++k) {
+    if (k > 0) {
+      EXPECT_EQ(g.edges()[p.edges[k]].from, g.edges()[p.edges[k - 1]].to);
+    }
+    d += g.edges()[p.edges[k]].distance;
+    u += g.edges()[p.edges[k]].unreliability;
+  }
+  EXPECT_EQ(p.distance, d);
+  EXPECT_EQ(p.unreliability, u);
+}
+
+TEST(Planner, EachCriterionEqualsBruteForceOverAllSimplePaths) {
+  int compared = 0, criteria_differ = 0;
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    const PlanGraph g = random_graph(8, 0.35, seed);
+    for (std::uint32_t s = 0; s < 8; ++s)
+      for (std::uint32_t t = 0; t < 8; ++t) {
+        if (s == t) continue;
+        Best by_d, by_u, by_r;
+        std::vector<char> on_path(8, 0);
+        enumerate(g, s, t, 0, 0, on_path, by_d, by_u, by_r);
+        const std::uint32_t src[] = {s}, dst[] = {t};
+        const auto pd = plan_path(g, src, dst, CostCriterion::distance);
+        const auto pu = plan_path(g, src, dst, CostCriterion::reliability);
+        const auto pr = plan_path(g, src, dst, CostCriterion::ratio);
+        ASSERT_EQ(pd.has_value(), by_d.d < kInf) << "seed " << seed << " " << s << "->" << t;
+        ASSERT_EQ(pu.has_value(), pd.has_value());
+        ASSERT_EQ(pr.has_value(), pd.has_value());
+        if (!pd) continue;
+        ++compared;
+        expect_valid_path(g, *pd, s, t);
+        expect_valid_path(g, *pu, s, t);
+        expect_valid_path(g, *pr, s, t);
+        // Sums along different paths may round differently, hence the tolerance on equal keys.
+        EXPECT_NEAR(pd->distance, by_d.d, 1e-9) << "seed " << seed << " " << s << "->" << t;
+        EXPECT_NEAR(pd->unreliability, by_d.u, 1e-9);
+        EXPECT_NEAR(pu->unreliability, by_u.u, 1e-9) << "seed " << seed << " " << s << "->" << t;
+        EXPECT_NEAR(pu->distance, by_u.d, 1e-9);
+        EXPECT_NEAR(pr->ratio(), by_r.r, 1e-9 * by_r.r) << "seed " << seed << " " << s << "->" << t;
+        if (pr->ratio() < std::min(pd->ratio(), pu->ratio()) - 1e-9) ++criteria_differ;
+      }
+  }
+  EXPECT_GT(compared, 1000);
+  // The compromise must sometimes beat both single-criterion paths, or the test would not show that
+  // the label search is more than picking the better of the two.
+  EXPECT_GT(criteria_differ, 10);
+}
+
+// Every Pareto-optimal (D, U) label at every node, by label correcting without any bound; the
+// reference for the ratio search on graphs too large to enumerate.
+double reference_min_ratio(const PlanGraph& g, std::uint32_t source, std::uint32_t target) {
+  std::vector<std::vector<std::pair<double, double>>> front(g.node_count());
+  std::vector<std::pair<std::uint32_t, std::pair<double, double>>> queue{{source, {0, 0}}};
+  front[source].push_back({0, 0});
+  while (!queue.empty()) {
+    const auto [v, label] = queue.back();
+    queue.pop_back();
+    if (std::find(front[v].begin(), front[v].end(), label) == front[v].end()) continue;  // since dominated
+    for (const std::uint32_t e : g.out_edges(v)) {
+      const PlanEdge& edge = g.edges()[e];
+      const std::pair<double, double> next{label.first + edge.distance, label.second + edge.unreliability};
+      auto& f = front[edge.to];
+      if (std::any_of(f.begin(), f.end(),
+                      [&](const auto& o) { return o.first <= next.first && o.second <= next.second; }))
+        continue;
+      std::erase_if(f, [&](const auto& o) { return next.first <= o.first && next.second <= o.second; });
+      f.push_back(next);
+      queue.push_back({edge.to, next});
+    }
+  }
+  double best = kInf;
+  for (const auto& [d, u] : front[target]) best = std::min(best, ratio_of(d, u));
+  return best;
+}
+
+TEST(Planner, RatioEqualsTheUnprunedParetoFrontOnLargerGraphs) {
+  for (std::uint64_t seed = 100; seed < 106; ++seed) {
+    const PlanGraph g = random_graph(120, 0.04, seed);
+    for (std::uint32_t t = 1; t < 120; t += 7) {
+      const double expected = reference_min_ratio(g, 0, t);
+      const std::uint32_t src[] = {0}, dst[] = {t};
+      const auto path = plan_path(g, src, dst, CostCriterion::ratio);
+      ASSERT_EQ(path.has_value(), expected < kInf) << "seed " << seed << " target " << t;
+      if (path) {
+        EXPECT_NEAR(path->ratio(), expected, 1e-9 * expected) << "seed " << seed << " target " << t;
+      }
+    }
+  }
+}
+
+TEST(Planner, UnreachableTargetIsNulloptAndCostsLittle) {
+  // Two halves with edges only from the second to the first: nothing in the second half is
+  // reachable from node 0. The search must not wander the first half's Pareto fronts.
+  const std::uint32_t half = 500;
+  PlanGraph g(2 * half);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (std::uint32_t a = 0; a < 2 * half; ++a)
+    for (int k = 0; k < 6; ++k) {
+      const auto b = static_cast<std::uint32_t>(rng() % half);
+      if (a != b) g.add_edge({a, b, unit(rng) * 10, unit(rng)});
+    }
+  const std::uint32_t src[] = {0}, dst[] = {half + 3};
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+    PlanStats stats;
+    EXPECT_FALSE(plan_path(g, src, dst, c, stats).has_value());
+    EXPECT_LE(stats.labels_created, g.edges().size() + 1) << criterion_name(c);
+  }
+}
+
+TEST(Planner, SourceThatIsATargetGivesTheEmptyPath) {
+  PlanGraph g(3);
+  g.add_edge({0, 1, 1, 0.1});
+  const std::uint32_t src[] = {0, 1}, dst[] = {1};
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+    const auto p = plan_path(g, src, dst, c);
+    ASSERT_TRUE(p.has_value());
+    EXPECT_TRUE(p->edges.empty());
+    EXPECT_EQ(p->ratio(), 0);
+  }
+}
+
+TEST(Planner, TiesGoToTheEarlierEdgeAndTheSmallerNode) {
+  // Two parallel equal edges 0 -> 1, and two equal routes to 3 through 1 and through 2.
+  PlanGraph g(4);
+  g.add_edge({0, 1, 5, 0.5});  // 0
+  g.add_edge({0, 1, 5, 0.5});  // 1
+  g.add_edge({0, 2, 5, 0.5});  // 2
+  g.add_edge({2, 3, 5, 0.5});  // 3
+  g.add_edge({1, 3, 5, 0.5});  // 4
+  const std::uint32_t src[] = {0}, dst[] = {3};
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+    const auto p = plan_path(g, src, dst, c);
+    ASSERT_TRUE(p.has_value());
+    EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{0, 4})) << criterion_name(c);
+  }
+}
+
+TEST(Planner, ZeroCostCyclesEnd) {
+  PlanGraph g(4);
+  g.add_edge({0, 1, 0, 0});
+  g.add_edge({1, 2, 0, 0});
+  g.add_edge({2, 0, 0, 0});
+  g.add_edge({2, 3, 1, 0});
+  const std::uint32_t src[] = {0}, dst[] = {3};
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+    const auto p = plan_path(g, src, dst, c);
+    ASSERT_TRUE(p.has_value());
+    EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{0, 1, 3})) << criterion_name(c);
+  }
+}
+
+TEST(Planner, TheCompromiseLiesBetweenTheExtremes) {
+  // A short risky edge, a long safe detour, and a middle way that is best under D/R.
+  PlanGraph g(4);
+  g.add_edge({0, 3, 100, 1.0});        // shortest: D/R = 271.8
+  g.add_edge({0, 1, 150, 0.0});        // most reliable: D 300, U 0, D/R 300
+  g.add_edge({1, 3, 150, 0.0});
+  g.add_edge({0, 2, 60, 0.1});         // compromise: D 120, U 0.4, D/R 179.0
+  g.add_edge({2, 3, 60, 0.3});
+  const std::uint32_t src[] = {0}, dst[] = {3};
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{0});
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::reliability)->edges, (std::vector<std::uint32_t>{1, 2}));
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::ratio)->edges, (std::vector<std::uint32_t>{3, 4}));
+}
+
+TEST(Planner, RejectsBadEdgesAndNodes) {
+  PlanGraph g(2);
+  EXPECT_THROW(g.add_edge({0, 2, 1, 0}), std::invalid_argument);
+  EXPECT_THROW(g.add_edge({0, 1, -1, 0}), std::invalid_argument);
+  EXPECT_THROW(g.add_edge({0, 1, 1, std::nan("")}), std::invalid_argument);
+  EXPECT_THROW(g.add_edge({0, 1, kInf, 0}), std::invalid_argument);
+  const std::uint32_t bad[] = {5}, ok[] = {1};
+  EXPECT_THROW(plan_path(g, bad, ok, CostCriterion::distance), std::invalid_argument);
+  EXPECT_THROW(plan_path(g, ok, bad, CostCriterion::ratio), std::invalid_argument);
+  EXPECT_EQ(parse_criterion("ratio"), CostCriterion::ratio);
+  EXPECT_FALSE(parse_criterion("Ratio").has_value());
+}
+
+TEST(Planner, SameGraphSamePath) {
+  const PlanGraph a = random_graph(60, 0.08, 42), b = random_graph(60, 0.08, 42);
+  const std::uint32_t src[] = {0, 1}, dst[] = {50, 59};
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+    const auto pa = plan_path(a, src, dst, c), pb = plan_path(b, src, dst, c);
+    ASSERT_EQ(pa.has_value(), pb.has_value());
+    if (pa) {
+      EXPECT_EQ(pa->edges, pb->edges);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::mapmaker

@@ -1,0 +1,122 @@
+// Step reliabilities against their Monte Carlo definitions (park-kender.md §6): the fitted selection
+// model against fresh simulations, the trajectory approximation against simulated slides.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "nav/mapmaker/reliability_fit.hpp"
+#include "nav/mapmaker/trajectories.hpp"
+
+namespace neopipe::nav::mapmaker {
+namespace {
+
+// The fit's published maximum error over its 84 cells (docs/navigation.md).
+constexpr double kPublishedMaxError = 0.024;
+
+TEST(Reliability, FittedSelectionModelMatchesFreshMonteCarlo) {
+  for (const int n : {3, 6, 10, 15}) {
+    for (const double s : {0.01, 0.04, 0.12}) {
+      constexpr int kTrials = 3000;
+      const SelectionSample mc = simulate_selection(n, s, kTrials, 977 + static_cast<std::uint64_t>(n));
+      const double model = selection_reliability(n, s * 50, 50);
+      const double p = mc.reliability();
+      const double tolerance = kPublishedMaxError + 3 * std::sqrt(p * (1 - p) / kTrials);
+      EXPECT_NEAR(model, p, tolerance) << "n " << n << " sigma/a " << s;
+    }
+  }
+}
+
+TEST(Reliability, SelectionIsCertainWithOneCandidateOrNoErrorAndFallsWithRivalsAndError) {
+  EXPECT_EQ(selection_reliability(1, 2.0, 50), 1.0);
+  EXPECT_EQ(selection_reliability(2, 2.0, 50), 1.0);
+  EXPECT_EQ(selection_reliability(8, 0.0, 50), 1.0);
+  for (int n = 3; n < 20; ++n) {
+    EXPECT_LT(selection_reliability(n + 1, 1.0, 50), selection_reliability(n, 1.0, 50));
+    EXPECT_LT(selection_reliability(n, 2.0, 50), selection_reliability(n, 1.0, 50));
+    // Only sigma / a matters.
+    EXPECT_DOUBLE_EQ(selection_reliability(n, 2.0, 100), selection_reliability(n, 1.0, 50));
+  }
+}
+
+TEST(Reliability, FitRecoversTheCoefficientsOfExactSamples) {
+  const SelectionReliabilityModel truth{0.3, 1.2, 0.9};
+  std::vector<SelectionSample> samples;
+  for (int n = 3; n <= 12; ++n)
+    for (const double s : {0.01, 0.03, 0.1}) {
+      constexpr int kTrials = 1'000'000'000;
+      samples.push_back({n, s, kTrials, static_cast<int>(std::lround(truth(n, s) * kTrials))});
+    }
+  const SelectionFit fit = fit_selection(samples);
+  EXPECT_NEAR(fit.model.log_k, truth.log_k, 1e-5);
+  EXPECT_NEAR(fit.model.beta, truth.beta, 1e-5);
+  EXPECT_NEAR(fit.model.gamma, truth.gamma, 1e-5);
+  EXPECT_LT(fit.max_error, 1e-6);
+  EXPECT_THROW(fit_selection(std::span<const SelectionSample>(samples.data(), 2)), std::invalid_argument);
+}
+
+// A world at the simulator's default density (200 marbles in 700 x 700 mm), built here so the test
+// does not depend on the simulator.
+Workspace random_world(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(5, 695);
+  Workspace w{{700, 700}, {}};
+  while (w.objects.size() < 200) {
+    const Eigen::Vector2d p(unit(rng), unit(rng));
+    bool clear = true;
+    for (const Eigen::Vector2d& q : w.objects) clear = clear && (p - q).norm() >= 6;
+    if (clear) w.objects.push_back(p);
+  }
+  return w;
+}
+
+TEST(Reliability, TrajectoryApproximationAgreesWithMonteCarloOnAverage) {
+  const Workspace workspace = random_world(11);
+  const WorldViews views(workspace, WindowModel{});
+  const std::vector<Trajectory> all = all_trajectories(views);
+  ASSERT_GT(all.size(), 300u);
+  for (const double sigma : {0.5, 2.0}) {
+    const NavigatorErrors errors{sigma};
+    double sum_abs = 0, bias = 0;
+    int count = 0;
+    for (std::size_t i = 0; i < all.size(); i += 5) {
+      const double mc = simulate_trajectory(views, all[i], errors, 400, 5 + i);
+      const double an = trajectory_reliability(views, all[i], errors);
+      ASSERT_GE(an, 0.0);
+      ASSERT_LE(an, 1.0);
+      sum_abs += std::abs(an - mc);
+      bias += an - mc;
+      ++count;
+    }
+    // neopipe_reliability_fit measured mean |diff| 0.022 (sigma 1) and 0.071 (sigma 4), bias < 0.004.
+    EXPECT_LT(sum_abs / count, 0.02 + 0.025 * sigma) << "sigma " << sigma;
+    EXPECT_LT(std::abs(bias / count), 0.02) << "sigma " << sigma;
+  }
+}
+
+TEST(Reliability, TrajectoriesAreCertainWithoutErrorsAndLessSoWithMore) {
+  const Workspace workspace = random_world(12);
+  const WorldViews views(workspace, WindowModel{});
+  const std::vector<Trajectory> all = all_trajectories(views);
+  double previous = 0;
+  for (const double sigma : {0.0, 0.5, 1.0, 2.0, 4.0}) {
+    const NavigatorErrors errors{sigma, 0, 0};
+    double mean = 0;
+    for (const Trajectory& t : all) {
+      const double r = trajectory_reliability(views, t, errors);
+      if (sigma == 0) {
+        EXPECT_EQ(r, 1.0);
+      }
+      mean += r;
+    }
+    mean /= static_cast<double>(all.size());
+    if (sigma > 0) {
+      EXPECT_LT(mean, previous) << "sigma " << sigma;
+    }
+    previous = mean;
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::mapmaker
