@@ -13,6 +13,7 @@
 #include "apps/map_plot.hpp"
 #include "calib/calibration.hpp"
 #include "nav/mapmaker/map_maker.hpp"
+#include "nav/mapmaker/parkway_quality.hpp"
 #include "nav/mapmaker/parkways.hpp"
 #include "sim/world.hpp"
 
@@ -185,6 +186,10 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
   cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
       ->capture_default_str()
       ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  cmd->add_option("--reliable-threshold", a.reliable_threshold,
+                  "Selection reliability an edge needs to belong to the reliable parkway")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", a.json, "One JSON object on stdout instead of text");
   cmd->add_option("--plot", a.plot, "Draw the world, parkways, trajectories and the route (.png or .svg)");
   cmd->add_option("--out", a.out, "Write the report here instead of stdout");
@@ -233,6 +238,8 @@ int map_command(const MapArgs& a) {
   const auto obvious = mm::obvious_parkway(views);
   const auto isolated = mm::isolated_parkway(views);
   const auto& trajectories = maker.steps().trajectories();
+  const mm::QualifiedParkways qualified =
+      mm::qualify_parkways(mm::parkway_edge_qualities(views, options.errors), a.reliable_threshold);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
   for (const mm::ParkwayEdge& e : isolated) edges.emplace_back(e.from, e.to);
   const std::size_t scc_parkways = mm::strongly_connected_components(views.object_count(), edges).size();
@@ -254,6 +261,16 @@ int map_command(const MapArgs& a) {
     for (const auto& e : obvious) j["parkways"]["obvious"].push_back({e.from, nav::corner_name(e.corner), e.to});
     j["parkways"]["isolated"] = json::array();
     for (const auto& e : isolated) j["parkways"]["isolated"].push_back({e.from, nav::corner_name(e.corner), e.to});
+    const auto subgraph_json = [](const mm::ParkwaySubgraph& g) {
+      json out = {{"obvious", json::array()}, {"isolated", json::array()}};
+      for (const auto& e : g.obvious) out["obvious"].push_back({e.from, nav::corner_name(e.corner), e.to});
+      for (const auto& e : g.isolated) out["isolated"].push_back({e.from, nav::corner_name(e.corner), e.to});
+      return out;
+    };
+    j["parkways"]["reliable"] = subgraph_json(qualified.reliable);
+    j["parkways"]["reliable"]["threshold"] = a.reliable_threshold;
+    j["parkways"]["detectable"] = subgraph_json(qualified.detectable);
+    j["parkways"]["recoverable"] = subgraph_json(qualified.recoverable);
     j["qoc"] = json::array();
     for (std::uint32_t i = 0; i < views.object_count(); ++i) j["qoc"].push_back(views.qoc(i));
     j["trajectories"] = json::array();
@@ -276,9 +293,14 @@ int map_command(const MapArgs& a) {
     report << fmt::format(
         "{} objects, window {} mm (margin {} mm), sigma {:.3f} mm\n"
         "parkways: {} general, {} obvious edges, {} isolated edges; {} trajectories\n"
+        "  reliable (R >= {}): {} obvious, {} isolated; error-detectable: {} obvious, {} isolated; "
+        "error-recoverable: {} obvious, {} isolated\n"
         "strongly connected components: {} with parkways, {} with trajectories too\n",
         views.object_count(), options.window.side, options.window.margin, options.errors.sigma, general.size(),
-        obvious.size(), isolated.size(), trajectories.size(), scc_parkways, scc_with_trajectories);
+        obvious.size(), isolated.size(), trajectories.size(), a.reliable_threshold, qualified.reliable.obvious.size(),
+        qualified.reliable.isolated.size(), qualified.detectable.obvious.size(), qualified.detectable.isolated.size(),
+        qualified.recoverable.obvious.size(), qualified.recoverable.isolated.size(), scc_parkways,
+        scc_with_trajectories);
     if (route) {
       report << fmt::format("\nroute {} -> {} by {}:\n", route->start, route->goal,
                             mm::criterion_name(route->criterion))

@@ -22,6 +22,7 @@ struct MapArgs {
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
   std::string cost = "ratio";
+  double reliable_threshold = 0.9;  ///< edges at least this reliable form the reliable parkway
   bool json = false;
   std::string plot;
   std::string out;  ///< empty: stdout

@@ -56,7 +56,7 @@ struct Drawing {
 
   Vector2d px(const Vector2d& p) const { return {pad + p.x() * scale, pad + (size.y() - p.y()) * scale}; }
   int width() const { return static_cast<int>(std::ceil(size.x() * scale + 2 * pad)); }
-  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + 20)); }
+  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + 40)); }
 };
 
 constexpr Colour kObject{20, 20, 20};
@@ -106,6 +106,11 @@ Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route) {
                     mm::criterion_name(route->criterion), route->distance, route->unreliability, route->steps.size());
   }
   d.labels.push_back({{0, -22 / d.scale}, caption, kObject, 13});
+  d.labels.push_back({{0, -42 / d.scale},
+                      "grey: isolated parkway edges; blue dashed: trajectories; red: route from the red start to "
+                      "the green goal; orange: the windows it holds",
+                      kBorder,
+                      11});
   return d;
 }
 

@@ -1,13 +1,15 @@
 // The map-maker's cost as the world grows (issue: 10,000 objects in under 1 s on one core): a world
 // at the default density (100 marbles per 500 x 500 mm) is mapped whole — views, parkways,
-// trajectories with their reliabilities — and one route planned across it with its custom map.
-// Peer in the same run: the general parkways by checking every pair, O(n^2), which the grid avoids.
+// the reliable / detectable / recoverable parkways, trajectories with their reliabilities — and one route planned
+// across it with its custom map. Peer in the same run: the general parkways by checking every pair, O(n^2), which the
+// grid avoids.
 
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
 #include "nav/mapmaker/map_maker.hpp"
+#include "nav/mapmaker/parkway_quality.hpp"
 #include "nav/mapmaker/parkways.hpp"
 #include "sim/world.hpp"
 
@@ -29,6 +31,8 @@ void BM_MapWorldAndRoute(benchmark::State& state) {
     const mm::MapMaker maker(workspace, mm::MapMakerOptions{});
     const auto general = mm::general_parkways(maker.views());
     benchmark::DoNotOptimize(general.data());
+    const auto qualities = mm::parkway_edge_qualities(maker.views(), maker.options().errors);
+    benchmark::DoNotOptimize(qualities.data());
     // A route from the object nearest one corner to the one nearest the opposite corner.
     std::uint32_t a = 0;
     std::uint32_t b = 0;

@@ -6,16 +6,15 @@
 //
 //   neopipe_reliability_fit [--trials N] [--seed S] [--worlds W]
 
+#include "nav/mapmaker/reliability_fit.hpp"
+
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
-#include <string>
 #include <vector>
 
-#include "nav/mapmaker/reliability_fit.hpp"
 #include "nav/mapmaker/trajectories.hpp"
 #include "sim/world.hpp"
 
@@ -29,20 +28,6 @@ struct Options {
   int worlds = 4;
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    const long value = std::strtol(argv[i + 1], nullptr, 10);
-    if (value <= 0) throw std::invalid_argument(flag + " " + argv[i + 1] + ": must be a positive integer");
-    if (flag == "--trials") o.trials = static_cast<int>(value);
-    else if (flag == "--seed") o.seed = static_cast<std::uint64_t>(value);
-    else if (flag == "--worlds") o.worlds = static_cast<int>(value);
-    else throw std::invalid_argument("unknown option " + flag + " (--trials N, --seed S, --worlds W)");
-  }
-  return o;
-}
-
 void selection_table(const Options& o) {
   const std::vector<double> sigmas{0.005, 0.01, 0.02, 0.04, 0.08, 0.16};
   std::vector<mm::SelectionSample> samples;
@@ -54,7 +39,8 @@ void selection_table(const Options& o) {
   for (int n = 3; n <= 16; ++n) {
     fmt::print("| {} |", n);
     for (std::size_t k = 0; k < sigmas.size(); ++k) {
-      const auto s = mm::simulate_selection(n, sigmas[k], o.trials, o.seed * 1000 + static_cast<std::uint64_t>(n * 16) + k);
+      const auto s =
+          mm::simulate_selection(n, sigmas[k], o.trials, o.seed * 1000 + static_cast<std::uint64_t>(n * 16) + k);
       samples.push_back(s);
       fmt::print(" {:.3f} |", s.reliability());
     }
@@ -76,7 +62,8 @@ void trajectory_check(const Options& o) {
     double sum_mc = 0, sum_an = 0, sum_abs = 0, max_abs = 0;
     int count = 0;
     for (int w = 0; w < o.worlds; ++w) {
-      const auto world = neopipe::sim::generate_world({200, {700, 700}, 5.0, 3.0, o.seed + static_cast<std::uint64_t>(w)});
+      const auto world =
+          neopipe::sim::generate_world({200, {700, 700}, 5.0, 3.0, o.seed + static_cast<std::uint64_t>(w)});
       const mm::Workspace workspace{world.size, world.objects};
       const mm::WorldViews views(workspace, neopipe::nav::WindowModel{});
       const std::vector<mm::Trajectory> all = mm::all_trajectories(views);
@@ -98,13 +85,22 @@ void trajectory_check(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{"Monte Carlo runs behind the map-maker's step reliabilities; prints Markdown tables"};
+  app.add_option("--trials", o.trials, "Trials per selection cell (a tenth of it per trajectory)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
+  app.add_option("--seed", o.seed, "Random seed: the same seed gives the same tables")->capture_default_str();
+  app.add_option("--worlds", o.worlds, "Random worlds for the trajectory check")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
+  CLI11_PARSE(app, argc, argv);
   try {
-    const Options o = parse(argc, argv);
     selection_table(o);
     trajectory_check(o);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "neopipe_reliability_fit: {}\n", e.what());
-    return 2;
+    return 1;
   }
 }

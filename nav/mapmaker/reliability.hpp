@@ -44,12 +44,15 @@ double selection_reliability(int visible, double sigma, double window_side);
 
 /// Probability that the first object to enter the navigator's sliding window is `trajectory.to`.
 ///
-/// The approximation: the slide's lateral offset at distance s is sd(s) Z with one standard normal Z
-/// (the heading error dominates, and it moves the whole path one way), where
-///   sd(s)^2 = sigma^2 + s^2 (2 sigma^2 / L^2 + t^2) + (r s^2 / 2)^2,
-/// L the baseline between the two landmarks, t and r the motion errors per mm. The goal is reached
-/// while the offset keeps it inside the swept band and keeps every object beside the band out of it
-/// up to the goal's entry; each such object bounds Z on its side, so R = Phi(z_hi) - Phi(z_lo).
+/// The approximation: across the track the slide is off by d(s) = -e c(s) + s g at distance s, with
+/// e ~ N(0, sigma^2) the reference's measurement error (it places the window and tilts the
+/// direction: c(s) = 1 +- s / L over the baseline L) and g ~ N(0, sigma^2 / L^2 + t^2 + (r s_g / 2)^2)
+/// the landmark's error plus the motion's across-track (t) and heading (r) errors over the slide s_g.
+/// Success needs the goal to stay inside the swept band, no object beside the band to be swept
+/// before the goal, and no object in the band to overtake it; each is a bound on d at some s. R
+/// integrates the bounds over g (64-node quadrature) with e's interval in closed form, times the
+/// chance that the start view agrees (the goal not already in view, no view object pushed ahead of
+/// a leading edge). Checked against simulate_trajectory in docs/navigation.md.
 double trajectory_reliability(const WorldViews& views, const Trajectory& trajectory, const NavigatorErrors& errors);
 
 }  // namespace neopipe::nav::mapmaker
