@@ -42,11 +42,11 @@ void write_csv(std::ostream& out, const std::vector<mm::StatisticsRow>& rows) {
   for (const std::string_view name : mm::count_names()) {
     out << fmt::format(",{0}_mean,{0}_sd,{0}_ci_low,{0}_ci_high", name);
   }
-  out << ",poisson_p_new,poisson_new_parkways\n";
+  out << ",poisson_p_new,poisson_new_parkways,poisson_new_parkways_bounded\n";
   for (const mm::StatisticsRow& r : rows) {
     out << fmt::format("{},{},{},{},{}", r.window.side, r.window.margin, r.population, r.trials, r.density);
     for (const mm::Summary& s : r.counts) out << fmt::format(",{},{},{},{}", s.mean, s.sd, s.ci_low, s.ci_high);
-    out << fmt::format(",{},{}\n", r.poisson_probability, r.poisson_new_parkways);
+    out << fmt::format(",{},{},{}\n", r.poisson_probability, r.poisson_new_parkways, r.poisson_new_parkways_bounded);
   }
 }
 

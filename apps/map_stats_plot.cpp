@@ -19,6 +19,7 @@ constexpr std::size_t kGeneral = 0;
 constexpr std::size_t kObvious = 3;
 constexpr std::size_t kIsolated = 4;
 constexpr std::size_t kWithTrajectories = 5;
+constexpr std::size_t kNewParkways = 9;
 
 const cv::Scalar kBlack(0, 0, 0);
 const cv::Scalar kGrey(200, 200, 200);
@@ -224,7 +225,8 @@ void write_map_stats_plot(const std::vector<mm::StatisticsRow>& rows, const std:
       .draw({series_of(rows, reference, kObvious, "obvious", palette(3)),
              series_of(rows, reference, kIsolated, "isolated", palette(1)),
              series_of(rows, reference, kGeneral, "general", palette(0)),
-             poisson_of(rows, reference, "Poisson: founded", palette(7))});
+             series_of(rows, reference, kNewParkways, "founded (simulated)", palette(7)),
+             poisson_of(rows, reference, "founded (Poisson)", palette(7))});
   Panel(image, {700, 550, 700, 550}, fmt::format("Fig. 11: strongly connected components, window {}", ref),
         "population (objects)", "components")
       .draw({series_of(rows, reference, kIsolated, "parkways only", palette(3)),

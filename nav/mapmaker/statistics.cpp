@@ -113,6 +113,27 @@ double poisson_expected_new_parkways(double size, const WindowModel& window, std
   return sum;
 }
 
+double poisson_expected_new_parkways_bounded(double size, const WindowModel& window, std::size_t population) {
+  constexpr int kSteps = 512;
+  const double reach = window.side - 2 * window.margin;
+  // Length of the neighbourhood (x - reach, x + reach) inside (0, size), at each midpoint.
+  std::vector<double> length(kSteps);
+  for (int i = 0; i < kSteps; ++i) {
+    const double x = (i + 0.5) * size / kSteps;
+    length[static_cast<std::size_t>(i)] = std::min(x + reach, size) - std::max(x - reach, 0.0);
+  }
+  const double n = static_cast<double>(population);
+  double sum = 0;
+  for (const double lx : length) {
+    for (const double ly : length) {
+      // sum_{t<N} q^t = (1 - q^N) / (1 - q), with q = exp(-area / R); expm1 keeps it exact for tiny areas.
+      const double rate = lx * ly / (size * size);
+      sum += rate > 0 ? std::expm1(-rate * n) / std::expm1(-rate) : n;
+    }
+  }
+  return sum / (static_cast<double>(kSteps) * kSteps);
+}
+
 std::vector<Eigen::Vector2d> random_objects(double size, std::uint64_t seed, std::size_t trial,
                                             std::size_t population) {
   // Seeds of nearby trials are decorrelated by running their combination through the mixer first.
@@ -213,6 +234,7 @@ std::vector<StatisticsRow> parkway_statistics(const StatisticsOptions& o,
       }
       row.poisson_probability = poisson_new_parkway_probability(o.size, row.window, row.population);
       row.poisson_new_parkways = poisson_expected_new_parkways(o.size, row.window, row.population);
+      row.poisson_new_parkways_bounded = poisson_expected_new_parkways_bounded(o.size, row.window, row.population);
       rows.push_back(row);
     }
   }

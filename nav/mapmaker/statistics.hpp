@@ -51,6 +51,10 @@ std::size_t count_new_parkways(const std::vector<Eigen::Vector2d>& objects, cons
 /// t = 0 .. population-1.
 double poisson_new_parkway_probability(double size, const WindowModel& window, std::size_t t);
 double poisson_expected_new_parkways(double size, const WindowModel& window, std::size_t population);
+/// The same model with each object's neighbourhood clipped to the world (not in the paper): an object
+/// near an edge has less room for neighbours, so more objects found parkways. The expectation over
+/// the new object's place is a midpoint sum on a 512 x 512 grid of the closed-form geometric sum.
+double poisson_expected_new_parkways_bounded(double size, const WindowModel& window, std::size_t population);
 
 /// The first `population` objects of trial `trial`'s world: uniform in the open square (0, size)^2,
 /// from a generator seeded by (seed, trial) only. Worlds are nested (population N is the first N objects
@@ -85,8 +89,9 @@ struct StatisticsRow {
   std::size_t trials = 0;
   double density = 0;  ///< population (a - 2m)^2 / R: objects per window-reach square
   std::array<Summary, kCountFields> counts;
-  double poisson_probability = 0;   ///< the next object founds a new parkway
-  double poisson_new_parkways = 0;  ///< expected new parkways so far
+  double poisson_probability = 0;           ///< the next object founds a new parkway
+  double poisson_new_parkways = 0;          ///< expected new parkways so far
+  double poisson_new_parkways_bounded = 0;  ///< the same, neighbourhoods clipped to the world
 };
 
 /// Every (window, population) row, windows outer, populations inner, in the order given. Trials run

@@ -34,11 +34,11 @@ TEST_F(MapStatsCli, CsvHasOneRowPerWindowAndPopulation) {
             0U)
       << header;
   for (const char* column : {"isolated_objects_mean", "obvious_parkways_mean", "isolated_parkways_mean",
-                             "scc_with_trajectories_mean", "new_parkways_ci_high", "poisson_new_parkways"}) {
+                             "scc_with_trajectories_mean", "new_parkways_ci_high", "poisson_new_parkways_bounded"}) {
     EXPECT_NE(header.find(column), std::string::npos) << column;
   }
   const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',') + 1);
-  EXPECT_EQ(columns, 5U + 4U * 10U + 2U);
+  EXPECT_EQ(columns, 5U + 4U * 10U + 3U);
   ASSERT_EQ(rows.size(), 6U);
   const std::vector<double> windows{4, 4, 4, 6, 6, 6};
   const std::vector<double> populations{0, 20, 40, 0, 20, 40};

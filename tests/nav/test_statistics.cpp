@@ -173,6 +173,26 @@ TEST(ParkwayStatistics, PoissonEstimateMatchesSimulationAtLowDensity) {
   EXPECT_GT(row.poisson_new_parkways, 80);
 }
 
+TEST(ParkwayStatistics, EdgeClippedPoissonExplainsTheExcessAtLargeWindows) {
+  // A 10 x 10 window in a 100 x 100 world: objects near the edges have up to half their
+  // neighbourhood outside, which the paper's formula ignores.
+  const neopipe::nav::WindowModel window = neopipe::nav::WindowModel::with_side(10);
+  EXPECT_GT(mm::poisson_expected_new_parkways_bounded(100, window, 200),
+            mm::poisson_expected_new_parkways(100, window, 200));
+  // Far from the edges (a huge world) the two agree.
+  EXPECT_NEAR(mm::poisson_expected_new_parkways_bounded(1e5, window, 200),
+              mm::poisson_expected_new_parkways(1e5, window, 200), 1e-3);
+  EXPECT_DOUBLE_EQ(mm::poisson_expected_new_parkways_bounded(100, window, 0), 0);
+  mm::StatisticsOptions o;
+  o.size = 100;
+  o.windows = {10};
+  o.populations = {200};
+  o.trials = 100;
+  const auto row = mm::parkway_statistics(o)[0];
+  EXPECT_NEAR(row.counts[9].mean, row.poisson_new_parkways_bounded, 0.03 * row.poisson_new_parkways_bounded);
+  EXPECT_GT(row.counts[9].mean, 1.05 * row.poisson_new_parkways);
+}
+
 TEST(ParkwayStatistics, RejectsBadOptions) {
   mm::StatisticsOptions o = small_run();
   o.trials = 0;
