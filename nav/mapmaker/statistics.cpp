@@ -12,6 +12,7 @@
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "nav/mapmaker/parkways.hpp"
 #include "nav/mapmaker/trajectories.hpp"
@@ -91,11 +92,28 @@ WorldCounts measure_world(const Workspace& workspace, const WindowModel& window)
 }
 
 std::size_t count_new_parkways(const std::vector<Eigen::Vector2d>& objects, const WindowModel& window) {
+  // Objects so far, bucketed in cells of side `reach`: an earlier object within reach lies in one of
+  // the 3 x 3 cells around the new one. Linear in the population, so large populations stay cheap.
+  const double reach = window.side - 2 * window.margin;
+  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector2d>> cells;
+  const auto key = [](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint64_t>(cy & 0xffffffff);
+  };
   std::size_t founded = 0;
-  for (std::size_t j = 0; j < objects.size(); ++j) {
-    const bool seen = std::any_of(objects.begin(), objects.begin() + static_cast<std::ptrdiff_t>(j),
-                                  [&](const Eigen::Vector2d& p) { return window.fit_together(p, objects[j]); });
+  for (const Eigen::Vector2d& q : objects) {
+    const auto cx = static_cast<std::int64_t>(std::floor(q.x() / reach));
+    const auto cy = static_cast<std::int64_t>(std::floor(q.y() / reach));
+    bool seen = false;
+    for (std::int64_t dx = -1; dx <= 1 && !seen; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1 && !seen; ++dy) {
+        const auto it = cells.find(key(cx + dx, cy + dy));
+        if (it == cells.end()) continue;
+        seen = std::any_of(it->second.begin(), it->second.end(),
+                           [&](const Eigen::Vector2d& p) { return window.fit_together(p, q); });
+      }
+    }
     if (!seen) ++founded;
+    cells[key(cx, cy)].push_back(q);
   }
   return founded;
 }

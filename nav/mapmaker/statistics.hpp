@@ -42,7 +42,7 @@ std::array<double, kCountFields> count_values(const WorldCounts& c);
 WorldCounts measure_world(const Workspace& workspace, const WindowModel& window);
 
 /// Objects added one at a time, in order: how many had no earlier object that fits in one window
-/// with it (each founds a new general parkway, paper Fig. 6). Brute force, O(n^2).
+/// with it (each founds a new general parkway, paper Fig. 6). Linear time (a hash grid).
 std::size_t count_new_parkways(const std::vector<Eigen::Vector2d>& objects, const WindowModel& window);
 
 /// The paper's Poisson model: the object added to a world of t objects founds a new parkway with

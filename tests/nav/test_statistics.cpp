@@ -56,6 +56,22 @@ TEST(ParkwayStatistics, NewParkwaysDependOnTheOrderOfArrival) {
   EXPECT_EQ(mm::count_new_parkways(a_b_c, window), 1U);
 }
 
+TEST(ParkwayStatistics, NewParkwaysAgreeWithBruteForce) {
+  for (const double side : {2.0, 5.0, 10.0}) {
+    const neopipe::nav::WindowModel window = neopipe::nav::WindowModel::with_side(side);
+    for (std::size_t trial = 0; trial < 5; ++trial) {
+      const auto objects = mm::random_objects(100, 3, trial, 300);
+      std::size_t brute = 0;
+      for (std::size_t j = 0; j < objects.size(); ++j) {
+        bool seen = false;
+        for (std::size_t i = 0; i < j; ++i) seen = seen || window.fit_together(objects[i], objects[j]);
+        if (!seen) ++brute;
+      }
+      EXPECT_EQ(mm::count_new_parkways(objects, window), brute) << side << " " << trial;
+    }
+  }
+}
+
 TEST(ParkwayStatistics, RandomWorldsAreNestedAndInside) {
   const auto small = mm::random_objects(100, 7, 3, 50);
   const auto large = mm::random_objects(100, 7, 3, 200);
