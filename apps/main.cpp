@@ -11,6 +11,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/run_command.hpp"
 #include "apps/map_command.hpp"
+#include "apps/map_stats_command.hpp"
 #include "apps/sim_command.hpp"
 
 namespace {
@@ -53,6 +54,8 @@ int run_main(int argc, char** argv) {
   CLI::App* sim = add_sim_command(app, sim_args);
   MapArgs map_args;
   CLI::App* map = add_map_command(app, map_args);
+  MapStatsArgs map_stats_args;
+  CLI::App* map_stats = add_map_stats_command(map, map_stats_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -83,6 +86,7 @@ int run_main(int argc, char** argv) {
     const std::string name = calibrate->got_subcommand("map") ? "calibrate map" : "calibrate";
     return guarded(name, [&] { return calibrate_command(*calibrate, calibrate_args); });
   }
+  if (map_stats->parsed()) return guarded("map stats", [&] { return map_stats_command(map_stats_args); });
   if (map->parsed()) return guarded("map", [&] { return map_command(map_args); });
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();
