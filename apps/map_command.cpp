@@ -207,6 +207,9 @@ int map_command(const MapArgs& a) {
   mm::Workspace workspace = load_workspace(a);
   const std::string origin = a.world.empty() ? a.blobs : a.world;
   if (workspace.objects.empty()) throw mm::MapError(fmt::format("{}: the world has no objects", origin));
+  if (workspace.objects.size() == 1) {
+    throw mm::MapError(fmt::format("{}: the world has one object; a map needs at least two", origin));
+  }
   if (a.window > std::min(workspace.size.x(), workspace.size.y())) {
     throw mm::MapError(fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, workspace.size.x(),
                                    workspace.size.y()));

@@ -52,12 +52,20 @@ PlannedPath make_path(const PlanGraph& graph, std::vector<std::uint32_t> reverse
   return path;
 }
 
-// Dijkstra with a lexicographic key, (D, U) or (U, D). A pair key with nonnegative increments is as
+// What a Dijkstra run minimises: primary = wd D + wu U, ties broken by secondary = D or U (the one
+// with weight 0 for the pure criteria, D for the compromise's weighted sums).
+struct Weights {
+  double wd = 1, wu = 0;
+  bool secondary_is_distance = false;
+  static Weights distance() { return {1, 0, false}; }
+  static Weights reliability() { return {0, 1, true}; }
+};
+
+// Dijkstra with a lexicographic key (primary, secondary). A pair key with nonnegative increments is as
 // good as a scalar one: extending a path never makes its key smaller, and floating-point addition is
 // monotone, so the settled key of a node is final and its primary component is the exact minimum.
-template <bool kByDistance>
 std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std::uint32_t> sources,
-                                    const std::vector<char>& is_target, PlanStats& stats) {
+                                    const std::vector<char>& is_target, const Weights& weights, PlanStats& stats) {
   struct Entry {
     double primary, secondary;
     std::uint32_t node;
@@ -78,6 +86,7 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
     std::push_heap(heap.begin(), heap.end(), later);
     ++stats.labels_created;
   }
+  ++stats.searches;
   while (!heap.empty()) {
     std::pop_heap(heap.begin(), heap.end(), later);
     const std::uint32_t v = heap.back().node;
@@ -95,8 +104,8 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
       const PlanEdge& edge = graph.edges()[e];
       const std::uint32_t w = edge.to;
       if (settled[w]) continue;
-      const double p = primary[v] + (kByDistance ? edge.distance : edge.unreliability);
-      const double s = secondary[v] + (kByDistance ? edge.unreliability : edge.distance);
+      const double p = primary[v] + (weights.wd * edge.distance + weights.wu * edge.unreliability);
+      const double s = secondary[v] + (weights.secondary_is_distance ? edge.distance : edge.unreliability);
       // Strictly better only: equal paths keep the first found, and zero-cost cycles cannot loop.
       if (std::tie(p, s) < std::tie(primary[w], secondary[w])) {
         primary[w] = p;
@@ -111,202 +120,93 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
   return std::nullopt;
 }
 
-// The least D and the least U from every node to any target (independently), by Dijkstra on the
-// reversed edges; infinity where no target is reachable.
-struct RemainingCost {
-  std::vector<double> distance, unreliability;
-};
-
-std::vector<double> backwards_minimum(const PlanGraph& graph, const std::vector<char>& is_target,
-                                      const std::vector<std::uint32_t>& first_in,
-                                      const std::vector<std::uint32_t>& in_edges, double PlanEdge::*cost) {
-  using Entry = std::pair<double, std::uint32_t>;
-  std::vector<double> best(graph.node_count(), kInf);
-  std::vector<Entry> heap;
-  for (std::uint32_t v = 0; v < graph.node_count(); ++v)
-    if (is_target[v]) {
-      best[v] = 0;
-      heap.emplace_back(0, v);
-    }
-  const auto later = std::greater<Entry>();
-  std::make_heap(heap.begin(), heap.end(), later);
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), later);
-    const auto [c, v] = heap.back();
-    heap.pop_back();
-    if (c > best[v]) continue;
-    for (std::uint32_t i = first_in[v]; i < first_in[v + 1]; ++i) {
-      const PlanEdge& edge = graph.edges()[in_edges[i]];
-      const double through = c + edge.*cost;
-      if (through < best[edge.from]) {
-        best[edge.from] = through;
-        heap.emplace_back(through, edge.from);
-        std::push_heap(heap.begin(), heap.end(), later);
-      }
-    }
-  }
-  return best;
-}
-
-RemainingCost remaining_cost(const PlanGraph& graph, const std::vector<char>& is_target) {
-  std::vector<std::uint32_t> first_in(graph.node_count() + 1, 0);
-  for (const PlanEdge& e : graph.edges()) ++first_in[e.to + 1];
-  for (std::size_t v = 1; v < first_in.size(); ++v) first_in[v] += first_in[v - 1];
-  std::vector<std::uint32_t> in_edges(graph.edges().size());
-  std::vector<std::uint32_t> cursor(first_in.begin(), first_in.end() - 1);
-  for (std::uint32_t i = 0; i < graph.edges().size(); ++i) in_edges[cursor[graph.edges()[i].to]++] = i;
-  return {backwards_minimum(graph, is_target, first_in, in_edges, &PlanEdge::distance),
-          backwards_minimum(graph, is_target, first_in, in_edges, &PlanEdge::unreliability)};
-}
-
-// The compromise min D e^U by bi-criteria label setting over (D, U).
-//
-// Why Pareto labels suffice: f(D, U) = D e^U is nondecreasing in D (e^U > 0) and in U (D >= 0). If
-// path Q dominates path P (D_Q <= D_P, U_Q <= U_P, one strictly) then f(Q) <= f(P), and when f ties
-// Q still wins on (D, then U); so the path chosen under (f, D, U) is Pareto-optimal. Along the way,
-// a prefix dominated at an intermediate node stays dominated after any common extension (addition is
-// monotone, in floating point too), so dropping it loses nothing. Walks with cycles need no
-// separate care: a cycle adds nonnegative costs, so the walk is dominated or equalled by the label
-// already permanent at the repeated node and is dropped, which also stops zero-cost cycles.
-//
-// Labels are made permanent in lexicographic (D, U) order (then node id, then creation). A new label
-// is never lexicographically before the one it extends, so every permanent label at its node came
-// before it: it is dominated by (or equal to) one of them exactly when its U is not below their
-// smallest U. That is one number per node; temporary labels are compared one by one.
-//
-// Pruning: any label whose (f, D, U) is strictly worse than a target label already created cannot
-// lead anywhere better, since extending it never decreases f, D or U. And labels come out in D order
-// with f >= D, so once D exceeds the best target's f the search is over.
-//
-// Bounds (what keeps large worlds fast): the bound starts at the better of the min-D and min-U paths
-// (both are real paths, so the optimum is no worse), and every completion of a label at node v costs
-// at least (D + hD(v)) e^(U + hU(v)), hD and hU being v's exact remaining minima found by Dijkstra
-// backwards from the targets. A label whose lower bound exceeds the bound is dropped, and so is a
-// label at a node from which no target is reachable. The relative slack covers the rounding of
-// adding the remaining minima in another order than a path adds them; a label dropped this way is
-// strictly worse than the bound, and so is everything it dominates, so the path chosen is the same
-// as without the bounds.
-class RatioSearch {
+// The compromise min f = D e^U. log f = log D + U is concave in (D, U), and a concave function takes
+// its minimum over the convex hull of the paths' (D, U) points at a vertex of that hull; as f grows
+// with D and with U, at a vertex of its lower-left chain. Those vertices are exactly the paths that
+// minimise wd D + wu U for some weights wd, wu >= 0, so a few Dijkstra runs find them all: between
+// two known vertices P (less D) and Q (less U) the weights normal to PQ either find a path below
+// the segment, a new vertex to split at, or prove there is none (Aneja & Nair's dichotomic search);
+// a segment is skipped when no point between its ends could beat the best path found so far.
+// The result is the exact minimum up to rounding: a vertex within rounding of a segment cannot beat
+// the segment's ends by more than that, f being concave along it.
+class CompromiseSearch {
  public:
-  RatioSearch(const PlanGraph& graph, const std::vector<char>& is_target, const RemainingCost& remaining,
-              const PlannedPath& incumbent, PlanStats& stats)
-      : graph_(graph),
-        is_target_(is_target),
-        remaining_(remaining),
-        incumbent_(key_of(incumbent.distance, incumbent.unreliability)),
-        stats_(stats),
-        min_permanent_u_(graph.node_count(), kInf),
-        temporary_head_(graph.node_count(), kNone) {}
+  CompromiseSearch(const PlanGraph& graph, std::span<const std::uint32_t> sources, const std::vector<char>& is_target,
+                   PlanStats& stats)
+      : graph_(graph), sources_(sources), is_target_(is_target), stats_(stats) {}
 
-  std::optional<PlannedPath> run(std::span<const std::uint32_t> sources) {
-    for (const std::uint32_t s : sources) add_label(0, 0, s, kNone, kNone);
-    std::uint32_t best = kNone;
-    Key best_key{kInf, kInf, kInf};
-    while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), later);
-      const std::uint32_t index = heap_.back().label;
-      heap_.pop_back();
-      Label& label = labels_[index];
-      if (label.state == State::dead) continue;
-      if (label.distance > bound_.ratio) break;
-      const Key key = key_of(label.distance, label.unreliability);
-      if (bound_ < key) {
-        label.state = State::dead;
-        continue;
-      }
-      label.state = State::permanent;
-      ++stats_.labels_settled;
-      min_permanent_u_[label.node] = std::min(min_permanent_u_[label.node], label.unreliability);
-      if (is_target_[label.node]) {
-        // Extensions of a target label can only tie or lose, so it is not expanded.
-        if (key < best_key) {
-          best = index;
-          best_key = key;
-        }
-        continue;
-      }
-      // add_label may grow labels_, so `label` is not used past this point.
-      const double d = label.distance, u = label.unreliability;
-      for (const std::uint32_t e : graph_.out_edges(label.node)) {
-        const PlanEdge& edge = graph_.edges()[e];
-        add_label(d + edge.distance, u + edge.unreliability, edge.to, index, e);
-      }
-    }
-    if (best == kNone) return std::nullopt;
-    std::vector<std::uint32_t> reversed;
-    for (std::uint32_t i = best; labels_[i].edge != kNone; i = labels_[i].pred) reversed.push_back(labels_[i].edge);
-    return make_path(graph_, std::move(reversed));
+  std::optional<PlannedPath> run() {
+    const auto shortest = dijkstra(graph_, sources_, is_target_, Weights::distance(), stats_);
+    if (!shortest) return std::nullopt;
+    const auto most_reliable = dijkstra(graph_, sources_, is_target_, Weights::reliability(), stats_);
+    best_ = *shortest;
+    consider(*most_reliable);
+    split({*shortest, Weights::distance()}, {*most_reliable, Weights::reliability()}, 0);
+    return best_;
   }
 
  private:
-  enum class State : std::uint8_t { temporary, permanent, dead };
-  struct Label {
-    double distance, unreliability;
-    std::uint32_t node, pred, edge;
-    std::uint32_t next_temporary;  ///< the node's list of temporary labels
-    State state;
-  };
-  struct Entry {
-    double distance, unreliability;
-    std::uint32_t node, label;
-  };
-  struct Key {
-    double ratio, distance, unreliability;
-    bool operator<(const Key& o) const {
-      return std::tie(ratio, distance, unreliability) < std::tie(o.ratio, o.distance, o.unreliability);
-    }
-  };
+  static constexpr int kMaxDepth = 60;           // hull vertices are few; this only guards rounding
+  static constexpr double kRelativeGap = 1e-12;  // a path must lie this far below the segment
 
-  static bool later(const Entry& a, const Entry& b) {
-    return std::tie(a.distance, a.unreliability, a.node, a.label) >
-           std::tie(b.distance, b.unreliability, b.node, b.label);
+  static bool better(const PlannedPath& a, const PlannedPath& b) {
+    return std::make_tuple(a.ratio(), a.distance, a.unreliability) <
+           std::make_tuple(b.ratio(), b.distance, b.unreliability);
   }
-  static Key key_of(double d, double u) { return {ratio_of(d, u), d, u}; }
-
-  void add_label(double d, double u, std::uint32_t node, std::uint32_t pred, std::uint32_t edge) {
-    if (u >= min_permanent_u_[node]) return;
-    const double rest_d = remaining_.distance[node];
-    if (rest_d == kInf) return;  // no target is reachable from here
-    const Key& best = bound_.ratio < kInf ? bound_ : incumbent_;
-    if (ratio_of(d + rest_d, u + remaining_.unreliability[node]) > best.ratio * (1 + kBoundSlack)) return;
-    // Until a target label exists nothing can be pruned, so skip the exp.
-    const Key key = bound_.ratio < kInf || is_target_[node] ? key_of(d, u) : Key{kInf, d, u};
-    if (bound_ < key) return;
-    // Walk the node's temporary labels: drop the new one if one of them dominates or equals it,
-    // retire those it dominates, and unlink labels that have since become permanent.
-    std::uint32_t* link = &temporary_head_[node];
-    while (*link != kNone) {
-      Label& other = labels_[*link];
-      if (other.state == State::temporary && other.distance <= d && other.unreliability <= u) return;
-      if (other.state == State::temporary && !(d <= other.distance && u <= other.unreliability)) {
-        link = &other.next_temporary;
-        continue;
-      }
-      if (other.state == State::temporary) other.state = State::dead;
-      *link = other.next_temporary;
-    }
-    if (labels_.size() >= kNone) throw std::length_error("plan_path: more than 2^32 - 1 ratio labels");
-    const auto index = static_cast<std::uint32_t>(labels_.size());
-    labels_.push_back({d, u, node, pred, edge, temporary_head_[node], State::temporary});
-    temporary_head_[node] = index;
-    heap_.push_back({d, u, node, index});
-    std::push_heap(heap_.begin(), heap_.end(), later);
-    ++stats_.labels_created;
-    if (is_target_[node] && key < bound_) bound_ = key;
+  void consider(const PlannedPath& p) {
+    if (better(p, best_)) best_ = p;
   }
 
-  static constexpr double kBoundSlack = 1e-9;
+  // A hull vertex and the weights it minimises: every path lies on or above its line wd D + wu U = c.
+  struct Vertex {
+    PlannedPath path;
+    Weights line;
+    double level() const { return line.wd * path.distance + line.wu * path.unreliability; }
+  };
+
+  // Every path between p and q lies in the triangle under the segment pq and above both lines; f is
+  // concave, so its least value there is at a corner: p, q (already considered) or where the lines
+  // cross.
+  static double floor_between(const Vertex& p, const Vertex& q) {
+    const double det = p.line.wd * q.line.wu - p.line.wu * q.line.wd;
+    double d = p.path.distance;
+    double u = q.path.unreliability;
+    if (det > 0) {
+      d = std::max(d, (p.level() * q.line.wu - p.line.wu * q.level()) / det);
+      u = std::max(u, (p.line.wd * q.level() - p.level() * q.line.wd) / det);
+    }
+    return ratio_of(d, u);
+  }
+
+  // p: the vertex with less D, q: the one with less U. Segments whose floor is above the best f
+  // found so far cannot hold the optimum: on a long route most of the hull is never computed.
+  void split(const Vertex& p, const Vertex& q, int depth) {
+    if (depth > kMaxDepth || !(p.path.distance < q.path.distance && q.path.unreliability < p.path.unreliability)) {
+      return;
+    }
+    if (floor_between(p, q) > best_.ratio() * (1 + kRelativeGap)) return;
+    const Weights w{p.path.unreliability - q.path.unreliability, q.path.distance - p.path.distance, true};
+    const auto r = dijkstra(graph_, sources_, is_target_, w, stats_);
+    const Vertex v{*r, w};
+    const double on_segment = w.wd * p.path.distance + w.wu * p.path.unreliability;
+    if (!(v.level() < on_segment - kRelativeGap * on_segment)) return;
+    if (!(p.path.distance < r->distance && r->distance < q.path.distance)) return;
+    consider(*r);
+    // The side with the lower floor first: a better best prunes more of the other.
+    if (floor_between(p, v) <= floor_between(v, q)) {
+      split(p, v, depth + 1);
+      split(v, q, depth + 1);
+    } else {
+      split(v, q, depth + 1);
+      split(p, v, depth + 1);
+    }
+  }
 
   const PlanGraph& graph_;
+  std::span<const std::uint32_t> sources_;
   const std::vector<char>& is_target_;
-  const RemainingCost& remaining_;
-  const Key incumbent_;  ///< a path known to exist: the optimum is no worse
   PlanStats& stats_;
-  std::vector<double> min_permanent_u_;
-  std::vector<std::uint32_t> temporary_head_;
-  std::vector<Label> labels_;
-  std::vector<Entry> heap_;
-  Key bound_{kInf, kInf, kInf};  ///< the best target label created so far, permanent or not
+  PlannedPath best_;
 };
 
 }  // namespace
@@ -386,18 +286,11 @@ std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std
     if (is_source[v] && is_target[v]) return PlannedPath{};
   switch (criterion) {
     case CostCriterion::distance:
-      return dijkstra<true>(graph, sources, is_target, stats);
+      return dijkstra(graph, sources, is_target, Weights::distance(), stats);
     case CostCriterion::reliability:
-      return dijkstra<false>(graph, sources, is_target, stats);
-    case CostCriterion::ratio: {
-      // The two Dijkstra paths answer "is there any path" cheaply (the label search would otherwise
-      // explore every Pareto label before finding none) and give the label search its first bound.
-      const auto shortest = dijkstra<true>(graph, sources, is_target, stats);
-      if (!shortest) return std::nullopt;
-      const auto most_reliable = dijkstra<false>(graph, sources, is_target, stats);
-      const PlannedPath& incumbent = shortest->ratio() <= most_reliable->ratio() ? *shortest : *most_reliable;
-      return RatioSearch(graph, is_target, remaining_cost(graph, is_target), incumbent, stats).run(sources);
-    }
+      return dijkstra(graph, sources, is_target, Weights::reliability(), stats);
+    case CostCriterion::ratio:
+      return CompromiseSearch(graph, sources, is_target, stats).run();
   }
   return std::nullopt;
 }

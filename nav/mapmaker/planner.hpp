@@ -2,8 +2,8 @@
 // Path planning over the context-based graph (park-kender.md §5): nodes are placements
 // (object, corner) plus whatever virtual nodes the caller adds; an edge is one custom-map step with
 // its window travel D and unreliability U = -log R. Three criteria: shortest (min D), most reliable
-// (min U) and the compromise min D/R = D * e^U, found exactly by bi-criteria labels because D/R is
-// not additive along a path.
+// (min U) and the compromise min D/R = D * e^U, which is not additive along a path; it is found
+// exactly among the vertices of the convex hull of the paths' (D, U) points (planner.cpp says why).
 
 #include <cstddef>
 #include <cstdint>
@@ -63,8 +63,9 @@ struct PlannedPath {
 
 /// What a search did, for benchmarks and for checking that memory follows the work done.
 struct PlanStats {
-  std::size_t labels_created = 0;  ///< heap entries: improved nodes (distance, reliability) or Pareto labels (ratio)
-  std::size_t labels_settled = 0;  ///< nodes settled or labels made permanent
+  std::size_t labels_created = 0;  ///< heap entries: improved nodes, over all Dijkstra runs
+  std::size_t labels_settled = 0;  ///< nodes settled, over all Dijkstra runs
+  std::size_t searches = 0;        ///< Dijkstra runs (ratio: 2 + one per segment of the hull tried)
 };
 
 /// The best path from any node of `sources` (starting at cost 0) to any node of `targets` under
@@ -73,17 +74,16 @@ struct PlanStats {
 /// range.
 ///
 /// Determinism and ties: distance compares (D, then U), reliability compares (U, then D), ratio
-/// compares (D e^U, then D, then U); a path is replaced only by a strictly better one; nodes (ratio:
-/// labels) are settled in order of (cost, node id) and edges relaxed in insertion order. So the same
+/// compares (D e^U, then D, then U) among the hull's vertices, each found by a Dijkstra run on
+/// wd D + wu U (then D); a path is replaced only by a strictly better one; nodes are settled in order
+/// of (cost, node id) and edges relaxed in insertion order. So the same
 /// graph always gives the same path. Among equal paths, the one that reaches each node first in that
 /// order wins: between parallel edges, or edges leaving the same node, the earlier-inserted one;
 /// between different predecessors of equal cost, the one with the smaller node id (settled first);
 /// between targets of equal cost, the smaller node id.
 ///
-/// Cost: distance and reliability are Dijkstra, O(E log V). Ratio is a bi-criteria label-setting
-/// search whose work grows with the Pareto fronts of (D, U) at the nodes: small when D and U are
-/// positively correlated, as window travel and its unreliability are, but exponential in the worst
-/// case. Memory is proportional to the labels created (see PlanStats).
+/// Cost: distance and reliability are Dijkstra, O(E log V). Ratio is 2 + h Dijkstra runs for h
+/// vertices on the lower-left convex hull of (D, U) (a handful in practice), O(V + E) memory.
 std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std::uint32_t> sources,
                                      std::span<const std::uint32_t> targets, CostCriterion criterion);
 std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std::uint32_t> sources,

@@ -7,17 +7,12 @@
 #include <random>
 
 #include "nav/mapmaker/parkway_quality.hpp"
+#include "tests/nav/uniform_world.hpp"
 
 namespace neopipe::nav::mapmaker {
 namespace {
 
-Workspace random_workspace(int n, double side, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, side);
-  Workspace w{{side, side}, {}};
-  for (int i = 0; i < n; ++i) w.objects.emplace_back(u(rng), u(rng));
-  return w;
-}
+using test_worlds::uniform_world;
 
 // QOC by its definition: for each quadrant, is any other object in view with L held opposite it.
 int brute_force_qoc(const Workspace& w, const WindowModel& window, std::uint32_t landmark) {
@@ -70,7 +65,7 @@ TEST(ParkwayQuality, SubgraphsMatchTheirDefinitionsByBruteForce) {
   int unrecoverable = 0;
   int unreliable = 0;
   for (const int n : {20, 120, 300}) {
-    const Workspace w = random_workspace(n, 300, 11 + n);
+    const Workspace w = uniform_world(n, 300, 11 + n);
     const WindowModel window = WindowModel::with_side(50);
     const WorldViews views(w, window);
     const NavigatorErrors errors{.sigma = 2.0};
@@ -113,7 +108,7 @@ TEST(ParkwayQuality, SubgraphsMatchTheirDefinitionsByBruteForce) {
 }
 
 TEST(ParkwayQuality, ThresholdBoundsSelectTheWholeGraphOrTheCertainEdges) {
-  const Workspace w = random_workspace(150, 300, 5);
+  const Workspace w = uniform_world(150, 300, 5);
   const WorldViews views(w, WindowModel::with_side(50));
   const auto edges = parkway_edge_qualities(views, NavigatorErrors{});
   const QualifiedParkways all = qualify_parkways(edges, 0.0);

@@ -12,23 +12,18 @@
 #include "nav/mapmaker/parkways.hpp"
 #include "nav/mapmaker/trajectories.hpp"
 #include "nav/mapmaker/views.hpp"
+#include "tests/nav/uniform_world.hpp"
 
 namespace neopipe::nav::mapmaker {
 namespace {
 
 using Eigen::Vector2d;
 
-Workspace random_workspace(int n, double side, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0, side);
-  Workspace w{{side, side}, {}};
-  for (int i = 0; i < n; ++i) w.objects.emplace_back(u(rng), u(rng));
-  return w;
-}
+using test_worlds::uniform_world;
 
 TEST(MapViews, VisibleSetsEqualBruteForceAtEveryPlacement) {
   for (const int n : {0, 1, 30, 400}) {
-    const Workspace w = random_workspace(n, 300, 7 + n);
+    const Workspace w = uniform_world(n, 300, 7 + n);
     const WorldViews views(w, WindowModel::with_side(50));
     for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
       const Placement p = Placement::of_node(node);
@@ -44,7 +39,7 @@ TEST(MapViews, VisibleSetsEqualBruteForceAtEveryPlacement) {
 }
 
 TEST(MapViews, RejectsAMarginThatLeavesTheReferenceOutOfItsWindow) {
-  const Workspace w = random_workspace(3, 100, 1);
+  const Workspace w = uniform_world(3, 100, 1);
   EXPECT_THROW(WorldViews(w, WindowModel{50, 0}), MapError);
   EXPECT_THROW(WorldViews(w, WindowModel{50, 25}), MapError);
   EXPECT_THROW(WorldViews(w, WindowModel{-1, 0.1}), MapError);
@@ -67,7 +62,7 @@ TEST(Parkways, HandMadeWorldHasTheExpectedParkways) {
 }
 
 TEST(Parkways, GeneralParkwaysEqualBruteForceComponents) {
-  const Workspace w = random_workspace(80, 400, 3);  // ~1.5 neighbours per object: many components
+  const Workspace w = uniform_world(80, 400, 3);  // ~1.5 neighbours per object: many components
   const WorldViews views(w, WindowModel::with_side(30));
   const std::size_t n = w.objects.size();
   std::vector<std::uint32_t> label(n);
@@ -181,7 +176,7 @@ TEST(Trajectories, EntryDistanceIsWhereTheObjectCrossesIntoTheOpenWindow) {
 }
 
 TEST(Trajectories, SweepFindsTheSameGoalAsCheckingEveryObject) {
-  const Workspace w = random_workspace(500, 600, 9);
+  const Workspace w = uniform_world(500, 600, 9);
   const WorldViews views(w, WindowModel::with_side(40));
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> angle(0, 2 * std::numbers::pi);

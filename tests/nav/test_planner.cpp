@@ -1,6 +1,6 @@
 // The planner against brute force: every simple path of small random graphs (cycles only add
 // nonnegative cost, so the optimum is always simple), and a Pareto-front reference without any
-// pruning on larger graphs, where the ratio search's bounds do most of their work.
+// pruning on larger graphs, where the compromise comes from the convex hull of many (D, U) points.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,8 +42,8 @@ struct Best {
 };
 
 // Every simple path from `source` to `target` by depth-first search; keeps the best key per criterion.
-void enumerate(const PlanGraph& g, std::uint32_t v, std::uint32_t target, double d, double u, std::vector<char>& on_path,
-               Best& by_d, Best& by_u, Best& by_r) {
+void enumerate(const PlanGraph& g, std::uint32_t v, std::uint32_t target, double d, double u,
+               std::vector<char>& on_path, Best& by_d, Best& by_u, Best& by_r) {
   if (v == target) {
     if (std::tie(d, u) < std::tie(by_d.d, by_d.u)) by_d = {d, u, ratio_of(d, u)};
     if (std::tie(u, d) < std::tie(by_u.u, by_u.d)) by_u = {d, u, ratio_of(d, u)};
@@ -109,12 +109,12 @@ TEST(Planner, EachCriterionEqualsBruteForceOverAllSimplePaths) {
   }
   EXPECT_GT(compared, 1000);
   // The compromise must sometimes beat both single-criterion paths, or the test would not show that
-  // the label search is more than picking the better of the two.
+  // the compromise search is more than picking the better of the two.
   EXPECT_GT(criteria_differ, 10);
 }
 
 // Every Pareto-optimal (D, U) label at every node, by label correcting without any bound; the
-// reference for the ratio search on graphs too large to enumerate.
+// reference for the compromise search on graphs too large to enumerate.
 double reference_min_ratio(const PlanGraph& g, std::uint32_t source, std::uint32_t target) {
   std::vector<std::vector<std::pair<double, double>>> front(g.node_count());
   std::vector<std::pair<std::uint32_t, std::pair<double, double>>> queue{{source, {0, 0}}};
@@ -152,6 +152,30 @@ TEST(Planner, RatioEqualsTheUnprunedParetoFrontOnLargerGraphs) {
         EXPECT_NEAR(path->ratio(), expected, 1e-9 * expected) << "seed " << seed << " target " << t;
       }
     }
+  }
+}
+
+TEST(Planner, RatioFindsTheBestOfAHugeParetoFrontWithFewSearches) {
+  // A ladder of 14 stages, each crossed by a short risky or a long safe edge: up to 2^14 Pareto
+  // points at the end, of which the convex hull keeps a few.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    constexpr std::uint32_t kStages = 14;
+    PlanGraph g(kStages + 1);
+    for (std::uint32_t k = 0; k < kStages; ++k) {
+      const double d = 10 + 40 * unit(rng);
+      const double u = 0.05 + 0.3 * unit(rng);
+      g.add_edge({k, k + 1, d, u});
+      g.add_edge({k, k + 1, d * (1.5 + unit(rng)), u * 0.2 * unit(rng)});
+    }
+    const std::uint32_t src[] = {0}, dst[] = {kStages};
+    PlanStats stats;
+    const auto path = plan_path(g, src, dst, CostCriterion::ratio, stats);
+    ASSERT_TRUE(path.has_value());
+    const double expected = reference_min_ratio(g, 0, kStages);
+    EXPECT_NEAR(path->ratio(), expected, 1e-9 * expected) << "seed " << seed;
+    EXPECT_LE(stats.searches, 2U + 2 * kStages) << "seed " << seed;
   }
 }
 
@@ -220,10 +244,10 @@ TEST(Planner, ZeroCostCyclesEnd) {
 TEST(Planner, TheCompromiseLiesBetweenTheExtremes) {
   // A short risky edge, a long safe detour, and a middle way that is best under D/R.
   PlanGraph g(4);
-  g.add_edge({0, 3, 100, 1.0});        // shortest: D/R = 271.8
-  g.add_edge({0, 1, 150, 0.0});        // most reliable: D 300, U 0, D/R 300
+  g.add_edge({0, 3, 100, 1.0});  // shortest: D/R = 271.8
+  g.add_edge({0, 1, 150, 0.0});  // most reliable: D 300, U 0, D/R 300
   g.add_edge({1, 3, 150, 0.0});
-  g.add_edge({0, 2, 60, 0.1});         // compromise: D 120, U 0.4, D/R 179.0
+  g.add_edge({0, 2, 60, 0.1});  // compromise: D 120, U 0.4, D/R 179.0
   g.add_edge({2, 3, 60, 0.3});
   const std::uint32_t src[] = {0}, dst[] = {3};
   EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{0});
