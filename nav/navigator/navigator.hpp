@@ -1,0 +1,115 @@
+#pragma once
+// The navigator (direction follower, park-kender.md §1, §7-9): follows a custom map with nothing
+// but its onboard camera and relative arm moves. It sees the world only through a frame source and
+// moves only through the Arm interface; it links neither the simulator nor the map-maker, so no
+// ground truth can reach it (a link-time fact: see nav/navigator/CMakeLists.txt and its test).
+//
+// API contract shared by the navigator library (nav/navigator/) and the experiment harness
+// (apps/nav_*): change it only in both at once.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nav/common/custom_map.hpp"
+#include "nav/common/window.hpp"
+#include "pipeline/io/frame_source.hpp"
+
+namespace neopipe::nav::navigator {
+
+/// The arm as the navigator commands it: a move by (dx, dy) mm in the current tool frame, then a turn
+/// by dtheta rad. The navigator never turns on purpose (dtheta = 0); the real arm may, by error.
+class Arm {
+ public:
+  virtual ~Arm() = default;
+  virtual void move_relative(double dx, double dy, double dtheta) = 0;
+};
+
+/// What the navigator knows of its own camera: the square image shows exactly its view window, image
+/// x along the tool's x axis, image up along its y axis, `side_px` pixels for `window.side` mm.
+struct CameraModel {
+  int side_px = 256;
+};
+
+/// One look: blob centroids in window coordinates, mm, origin at the window's south-west corner,
+/// x East (tool x), y North (tool y). Produced by the engine's blob graph on an onboard frame.
+struct Sighting {
+  std::int64_t frame = 0;
+  std::vector<Eigen::Vector2d> objects;
+};
+
+struct NavigatorConfig {
+  WindowModel window;                ///< side a and margin m, as the map-maker assumed
+  CameraModel camera;
+  double adjust_tolerance = 0.4;     ///< mm: a landmark this close to its corner position is held
+  int max_adjust_moves = 8;          ///< servo iterations before the adjust counts as failed
+  double slide_step = 5;             ///< mm per move while sliding along a trajectory
+  double max_slide = 2000;           ///< mm: a trajectory that meets nothing this far is lost
+  bool recovery = true;              ///< apply the map's recovery rules (off: the "no recovery" runs)
+};
+
+/// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six
+/// outcomes of park-kender.md §9).
+enum class Ending : std::uint8_t {
+  arrived,        ///< followed every entry; believes it holds the goal
+  lost,           ///< could not find what an entry describes (aware failure 1)
+  unrecoverable,  ///< a verification failed and no rule applies (aware failure 2)
+};
+
+/// What happened at each entry, for the harness and the plots.
+struct EntryRecord {
+  std::size_t entry = 0;            ///< index into the custom map
+  bool verified = false;            ///< QOC measured and equal to the map's (k, -)
+  std::optional<int> measured_qoc;  ///< when it looked around
+  int recoveries = 0;               ///< recovery rules applied at this entry
+  std::int64_t frames = 0;          ///< frames grabbed for this entry
+};
+
+struct JourneyReport {
+  Ending ending = Ending::arrived;
+  std::string reason;  ///< for lost / unrecoverable: what could not be done, in the map's words
+  std::vector<EntryRecord> entries;
+  int recoveries = 0;                ///< total recovery rules applied
+  std::int64_t frames = 0;           ///< onboard frames processed
+  double commanded_travel = 0;       ///< mm, sum of |commanded moves|
+};
+
+/// Called by the navigator as it goes, so a harness can check each step against ground truth at the
+/// moment it happens. Carries nothing into the navigator.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  /// The landmark of entry `entry` is now held at its corner (or identified, for the last entry),
+  /// after any recovery. `window_position` is where the navigator sees it in its window.
+  virtual void landmark_held(std::size_t /*entry*/, const Eigen::Vector2d& /*window_position*/) {}
+  /// One frame was processed (for videos of the onboard view).
+  virtual void frame_seen(const pipeline::io::SourceFrame& /*frame*/, const Sighting& /*sighting*/) {}
+};
+
+/// Runs the engine's blob graph (the same one `neopipe run` uses on marbles) on each frame of
+/// `source` and maps the centroids to window coordinates.
+class Eye {
+ public:
+  Eye(pipeline::io::FrameSource& source, const NavigatorConfig& config);
+  ~Eye();
+  Eye(const Eye&) = delete;
+  Eye& operator=(const Eye&) = delete;
+  /// Grabs and processes the next frame. Throws std::runtime_error when the source has ended.
+  Sighting look();
+  /// The frame behind the last sighting.
+  const pipeline::io::SourceFrame& last_frame() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Follows `map` from its first entry, (*, c): the navigator starts holding the start object at c
+/// (the harness placed it there). Never throws for navigation failures: they end the report.
+JourneyReport follow(const CustomMap& map, Eye& eye, Arm& arm, const NavigatorConfig& config,
+                     Observer* observer = nullptr);
+
+}  // namespace neopipe::nav::navigator
