@@ -32,6 +32,15 @@ class Arm {
 /// x along the tool's x axis, image up along its y axis, `side_px` pixels for `window.side` mm.
 struct CameraModel {
   int side_px = 256;
+  /// mm: the objects are identical marbles of this diameter. A marble cut by the image border shows
+  /// only a cap whose centroid lies inside the window even when the marble's centre does not; the
+  /// Eye uses the diameter to put such a marble's centre back where it is.
+  double object_diameter = 5.0;
+  /// px: blobs smaller than this are sensor noise, not marbles.
+  int min_blob_area = 6;
+  /// Gray levels a marble must stand above the image's median (the workspace) at its centroid. On a
+  /// view with no marble Otsu's threshold splits the noise, and these blobs are not objects.
+  int min_contrast = 30;
 };
 
 /// One look: blob centroids in window coordinates, mm, origin at the window's south-west corner,
@@ -42,13 +51,13 @@ struct Sighting {
 };
 
 struct NavigatorConfig {
-  WindowModel window;                ///< side a and margin m, as the map-maker assumed
+  WindowModel window;  ///< side a and margin m, as the map-maker assumed
   CameraModel camera;
-  double adjust_tolerance = 0.4;     ///< mm: a landmark this close to its corner position is held
-  int max_adjust_moves = 8;          ///< servo iterations before the adjust counts as failed
-  double slide_step = 5;             ///< mm per move while sliding along a trajectory
-  double max_slide = 2000;           ///< mm: a trajectory that meets nothing this far is lost
-  bool recovery = true;              ///< apply the map's recovery rules (off: the "no recovery" runs)
+  double adjust_tolerance = 0.4;  ///< mm: a landmark this close to its corner position is held
+  int max_adjust_moves = 8;       ///< servo iterations before the adjust counts as failed
+  double slide_step = 5;          ///< mm per move while sliding along a trajectory
+  double max_slide = 2000;        ///< mm: a trajectory that meets nothing this far is lost
+  bool recovery = true;           ///< apply the map's recovery rules (off: the "no recovery" runs)
 };
 
 /// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six
@@ -72,9 +81,9 @@ struct JourneyReport {
   Ending ending = Ending::arrived;
   std::string reason;  ///< for lost / unrecoverable: what could not be done, in the map's words
   std::vector<EntryRecord> entries;
-  int recoveries = 0;                ///< total recovery rules applied
-  std::int64_t frames = 0;           ///< onboard frames processed
-  double commanded_travel = 0;       ///< mm, sum of |commanded moves|
+  int recoveries = 0;           ///< total recovery rules applied
+  std::int64_t frames = 0;      ///< onboard frames processed
+  double commanded_travel = 0;  ///< mm, sum of |commanded moves|
 };
 
 /// Called by the navigator as it goes, so a harness can check each step against ground truth at the
