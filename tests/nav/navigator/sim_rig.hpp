@@ -97,6 +97,7 @@ class Rig {
   Eye& eye() { return *eye_; }
   SimArm& arm() { return sim_arm_; }
   sim::SimulatedArm& sim_arm() { return arm_; }
+  const sim::Pose2& pose() const { return arm_.pose(); }
 
  private:
   sim::Pose2 start_pose() const { return {world_.size.x() / 2, world_.size.y() / 2, 0}; }
