@@ -4,6 +4,7 @@
 // in order on the calling thread, as the executor would run them for a lone frame, without its
 // worker threads (and without the process-wide thread limit it sets while it lives).
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -73,6 +74,58 @@ double uncut_centre(double centroid, double r) {
     (centroid_of_cut(mid, r) < centroid ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
+}
+
+// A disk of radius r centred at c (px, from a corner of the image along the two borders that meet
+// there; negative beyond them) shows the part inside both: its area and centroid, by integrating
+// its chords column by column.
+struct Cut {
+  double area = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+};
+Cut corner_cut(const Eigen::Vector2d& c, double r) {
+  constexpr int columns = 64;
+  const double x0 = std::max(0.0, c.x() - r);
+  const double x1 = c.x() + r;
+  Cut cut;
+  if (x1 <= x0) return cut;
+  const double dx = (x1 - x0) / columns;
+  double sx = 0;
+  double sy = 0;
+  for (int i = 0; i < columns; ++i) {
+    const double x = x0 + (i + 0.5) * dx;
+    const double h = std::sqrt(std::max(0.0, r * r - (x - c.x()) * (x - c.x())));
+    const double y0 = std::max(0.0, c.y() - h);
+    const double y1 = c.y() + h;
+    if (y1 <= y0) continue;
+    const double len = (y1 - y0) * dx;
+    cut.area += len;
+    sx += x * len;
+    sy += 0.5 * (y0 + y1) * len;
+  }
+  if (cut.area > 0) cut.centroid = {sx / cut.area, sy / cut.area};
+  return cut;
+}
+
+// The centre of a marble whose blob, cut by two borders at a corner, has its centroid at `centroid`
+// (px from that corner along both borders): Newton's method on corner_cut, started from the
+// one-border answers.
+Eigen::Vector2d uncut_corner_centre(const Eigen::Vector2d& centroid, double r) {
+  Eigen::Vector2d c(uncut_centre(centroid.x(), r), uncut_centre(centroid.y(), r));
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const Eigen::Vector2d f = corner_cut(c, r).centroid - centroid;
+    if (f.norm() < 1e-3) break;
+    constexpr double h = 0.05;
+    Eigen::Matrix2d jacobian;
+    jacobian.col(0) = (corner_cut(c + Eigen::Vector2d(h, 0), r).centroid - corner_cut(c, r).centroid) / h;
+    jacobian.col(1) = (corner_cut(c + Eigen::Vector2d(0, h), r).centroid - corner_cut(c, r).centroid) / h;
+    if (std::abs(jacobian.determinant()) < 1e-9) break;
+    Eigen::Vector2d step = jacobian.inverse() * f;
+    if (step.norm() > r) step *= r / step.norm();  // a deep cap's centroid barely moves: keep steps sane
+    c -= step;
+    c = c.cwiseMax(-r).cwiseMin(centroid);  // the cut only ever pulls the centroid inward
+  }
+  return c;
 }
 
 }  // namespace
@@ -179,8 +232,19 @@ Sighting Eye::look() {
     const bool east = b.x0 + b.width == image.cols;
     const bool north = b.y0 == 0;
     const bool south = b.y0 + b.height == image.rows;
-    if (west != east) cx = west ? uncut_centre(cx, r) : image.cols - uncut_centre(image.cols - cx, r);
-    if (north != south) cy = north ? uncut_centre(cy, r) : image.rows - uncut_centre(image.rows - cy, r);
+    const bool cut_x = west != east;
+    const bool cut_y = north != south;
+    if (cut_x && cut_y) {
+      // Cut at a corner: both borders pull the centroid, so both are undone at once.
+      const Eigen::Vector2d from_corner(west ? cx : image.cols - cx, north ? cy : image.rows - cy);
+      const Eigen::Vector2d c = uncut_corner_centre(from_corner, r);
+      cx = west ? c.x() : image.cols - c.x();
+      cy = north ? c.y() : image.rows - c.y();
+    } else if (cut_x) {
+      cx = west ? uncut_centre(cx, r) : image.cols - uncut_centre(image.cols - cx, r);
+    } else if (cut_y) {
+      cy = north ? uncut_centre(cy, r) : image.rows - uncut_centre(image.rows - cy, r);
+    }
     const Eigen::Vector2d p(cx * mm_per_px_x, a - cy * mm_per_px_y);
     // Visible means the centre strictly inside the window (park-kender.md §2), as the map-maker
     // assumed: a cap whose marble's centre lies outside is not an object in view.

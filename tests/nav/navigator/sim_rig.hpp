@@ -78,6 +78,16 @@ class Rig {
     return {pose.x + c * q.x() - s * q.y(), pose.y + s * q.x() + c * q.y()};
   }
 
+  /// Where the world point `w` really is in the window, from the tool's true pose.
+  Eigen::Vector2d to_window(const Eigen::Vector2d& w) const {
+    const sim::Pose2& pose = arm_.pose();
+    const double half = config_.window.side / 2;
+    const Eigen::Vector2d q = w - Eigen::Vector2d(pose.x, pose.y);
+    const double c = std::cos(pose.theta);
+    const double s = std::sin(pose.theta);
+    return Eigen::Vector2d(c * q.x() + s * q.y(), -s * q.x() + c * q.y()) + Eigen::Vector2d(half, half);
+  }
+
   /// The object nearest the world point `w` and its distance.
   std::pair<std::size_t, double> nearest_object(const Eigen::Vector2d& w) const {
     std::size_t best = 0;

@@ -41,11 +41,15 @@ TEST(Debug, One) {
   int w = 0;
   unsigned a = 0, b = 0;
   int errors = 0;
-  std::sscanf(env, "%d %u %u %d", &w, &a, &b, &errors);
+  int objects = 60;
+  double side = 300;
+  int seed_base = 100;
+  unsigned long rig_seed = 1;
+  std::sscanf(env, "%d %u %u %d %d %lf %d %lu", &w, &a, &b, &errors, &objects, &side, &seed_base, &rig_seed);
   sim::WorldRequest request;
-  request.objects = 60;
-  request.size = {300, 300};
-  request.seed = 100 + static_cast<std::uint64_t>(w);
+  request.objects = objects;
+  request.size = {side, side};
+  request.seed = static_cast<std::uint64_t>(seed_base + w);
   const sim::World world = sim::generate_world(request);
   mapmaker::MapMakerOptions mo;
   mo.window = WindowModel::with_side(50);
@@ -64,6 +68,7 @@ TEST(Debug, One) {
   }
   test_rig::RigOptions o;
   if (!errors) o.errors = sim::MotionErrors::none();
+  o.seed = rig_seed;
   test_rig::Rig rig(world, o);
   rig.hold(route.start, route.start_corner);
   Printer printer(rig);
