@@ -84,6 +84,7 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
   Eigen::Vector2d reference = hold.landmark;  // predicted place: ties are broken from it, as the map-maker does
   double gate = tracking_gate(0);
   double slid = 0;
+  double last_step = 0;
   for (;;) {
     const std::vector<Eigen::Vector2d> fresh = newcomers(everything_seen(pilot.sighting()), known, gate);
     // A newcomer inside entered during the last step; of several, the one that entered first.
@@ -92,6 +93,9 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     for (const Eigen::Vector2d& p : fresh) {
       const auto when = inside_during(p - offset, u, side);
       if (!when || when->lo > 0 || when->hi <= 0) continue;  // not inside now
+      // Entries happen through the leading edges during the last step. Anything else unmatched is a
+      // known object's ghost: a deep cap at the trailing edge, located too poorly to be matched.
+      if (-when->lo > last_step + 1.0) continue;
       if (!goal || when->lo < goal_entered || (when->lo == goal_entered && preferred(reference, p, *goal))) {
         goal = p;
         goal_entered = when->lo;
@@ -120,6 +124,7 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     reference -= d;
     pilot.move_and_look(d);
     slid += t;
+    last_step = t;
     gate = tracking_gate(t);
     if (next) {
       const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.sighting());
