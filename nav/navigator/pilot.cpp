@@ -23,8 +23,14 @@ const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
   // where they are seen (least squares about their centroids; the translation error drops out).
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;
   const double gate = tracking_gate(d.norm());
+  // Marbles cut by the border are located a little less well, which is a lot for an angle.
+  const double clear = config_.camera.object_diameter / 2 + 0.5;
+  const double side = config_.window.side;
+  const auto whole = [&](const Eigen::Vector2d& p) { return p.minCoeff() > clear && p.maxCoeff() < side - clear; };
   for (const Eigen::Vector2d& p : before) {
-    if (const auto i = nearest(sighting_.objects, p - d, gate)) pairs.emplace_back(p - d, sighting_.objects[*i]);
+    if (!whole(p)) continue;
+    const auto i = nearest(sighting_.objects, p - d, gate);
+    if (i && whole(sighting_.objects[*i])) pairs.emplace_back(p - d, sighting_.objects[*i]);
   }
   if (pairs.size() < 2) return sighting_;
   Eigen::Vector2d mean_predicted = Eigen::Vector2d::Zero();
@@ -45,8 +51,8 @@ const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
     dot += a.dot(b);
     spread += a.squaredNorm();
   }
-  // Objects close together measure the turn poorly: only a baseline of a centimetre or more counts.
-  constexpr double min_spread = 100;  // mm^2
+  // Objects close together measure the turn poorly: only a baseline of two centimetres or more counts.
+  constexpr double min_spread = 200;  // mm^2
   if (spread < min_spread) return sighting_;
   // Seen objects turned by -delta when the window turned by delta.
   heading_ -= std::atan2(cross, dot);

@@ -90,7 +90,9 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     // The exact window's coordinates (see held_view): it moves with the real one, axis-aligned.
     const Eigen::Rotation2Dd unturn(pilot.heading());
     const Eigen::Vector2d u_exact = unturn * u;
-    const auto exact = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d { return corner + unturn * (p - hold.landmark); };
+    const auto exact = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+      return corner + unturn * (p - hold.landmark);
+    };
     const std::vector<Eigen::Vector2d> fresh = newcomers(everything_seen(pilot.sighting()), known, gate);
     // A newcomer inside entered during the last step; of several, the one that entered first.
     std::optional<Eigen::Vector2d> goal;
