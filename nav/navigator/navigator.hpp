@@ -69,6 +69,10 @@ struct NavigatorConfig {
   double turn_sigma0 = 0.05 * 3.14159265358979 / 180;          // rad
   double turn_sigma_per_mm = 0.002 * 3.14159265358979 / 180;  // rad per mm moved
   double position_sigma = 0.015;                               // mm
+  /// mm: objects this close to a window border, on either side, may have been in view or not for the
+  /// map-maker (its positions have errors). When a view or a QOC measured as seen does not match the
+  /// map, the navigator tries them on the other side before it gives up (seek.cpp, verify.cpp).
+  double view_margin = 2.0;
 };
 
 /// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six

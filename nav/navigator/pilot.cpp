@@ -1,6 +1,7 @@
 #include "nav/navigator/pilot.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace neopipe::nav::navigator::detail {
@@ -92,7 +93,8 @@ double tracking_gate(double moved) {
   return 1.5 + 0.05 * moved;
 }
 
-HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading) {
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading,
+                   double margin) {
   // The exact window: axis-aligned as the map-maker's (the window's turn undone), the landmark at
   // its corner.
   const Eigen::Rotation2Dd unturn(heading);
@@ -102,17 +104,23 @@ HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel
   const auto reference = nearest(all, hold.landmark, tracking_gate(0));
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Eigen::Vector2d exact = corner + unturn * (all[i] - hold.landmark);
-    const bool inside = exact.x() > 0 && exact.x() < window.side && exact.y() > 0 && exact.y() < window.side;
+    const double depth = std::min({exact.x(), exact.y(), window.side - exact.x(), window.side - exact.y()});
     if (reference && i == *reference) {
       view.reference = view.points.size();
       view.points.push_back(all[i]);
-    } else if (inside) {
+      view.depth.push_back(depth);
+    } else if (depth > 0) {
       view.points.push_back(all[i]);
+      view.depth.push_back(depth);
+    } else if (depth > -margin) {
+      view.just_outside.push_back(all[i]);
+      view.outside_depth.push_back(depth);
     }
   }
   if (!reference) {  // not seen (cannot happen right after an adjust): keep it where it was held
     view.reference = view.points.size();
     view.points.push_back(hold.landmark);
+    view.depth.push_back(window.margin);
   }
   return view;
 }
