@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "nav/common/landmarks.hpp"
 #include "nav/navigator/pilot.hpp"
 
@@ -49,6 +51,12 @@ std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description descript
       landmark = *obvious;
       return std::nullopt;
     }
+  }
+  if (!chosen && view.points.size() == 1 && !view.just_outside.empty()) {
+    // Nothing in view, but the map-maker saw something: the object just outside most likely to be it.
+    const auto deepest = std::max_element(view.outside_depth.begin(), view.outside_depth.end());
+    landmark = view.just_outside[static_cast<std::size_t>(deepest - view.outside_depth.begin())];
+    return std::nullopt;
   }
   if (!chosen) {
     return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",
