@@ -1,0 +1,117 @@
+#pragma once
+// Internal to the navigator library: the state of one journey (the eye, the arm, what was seen
+// last, the report being written) and the custom-map steps built on it. Everything here works in
+// window coordinates (mm from the window's south-west corner); moving the tool by d moves the window
+// by d, so an object seen at p is expected at p - d after the move.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nav/common/custom_map.hpp"
+#include "nav/navigator/navigator.hpp"
+
+namespace neopipe::nav::navigator::detail {
+
+class Pilot {
+ public:
+  Pilot(Eye& eye, Arm& arm, const NavigatorConfig& config, Observer* observer, JourneyReport& report)
+      : eye_(eye), arm_(arm), config_(config), observer_(observer), report_(report) {}
+
+  const NavigatorConfig& config() const { return config_; }
+  const WindowModel& window() const { return config_.window; }
+  JourneyReport& report() { return report_; }
+
+  /// Grabs and processes a frame; the sighting stays current until the next look.
+  const Sighting& look();
+  const Sighting& sighting() const { return sighting_; }
+  /// Commands a move of the window by `d` (tool frame, no turn) and looks again.
+  const Sighting& move_and_look(const Eigen::Vector2d& d);
+
+  /// The navigator's estimate of how far its window has turned (rad, counter-clockwise) since the
+  /// journey began, when the map-maker's axes and the window's were the same. The arm turns a little
+  /// by error on every move and the navigator has no compass, but objects seen before and after a
+  /// move show the turn: the window's heading is dead-reckoned from them.
+  double heading() const { return heading_; }
+
+ private:
+  Eye& eye_;
+  Arm& arm_;
+  const NavigatorConfig& config_;
+  Observer* observer_;
+  JourneyReport& report_;
+  Sighting sighting_;
+  double heading_ = 0;
+};
+
+/// A failure the navigator is aware of; follow() turns it into the report's ending and reason.
+struct Failure {
+  Ending ending = Ending::lost;
+  std::string reason;
+};
+
+/// A landmark held at a corner: where it is seen in the window (within the adjust tolerance of the
+/// corner's position).
+struct Hold {
+  Eigen::Vector2d landmark;
+  Corner corner = Corner::SW;
+};
+
+/// Everything the sighting shows, in view or cut by the border.
+std::vector<Eigen::Vector2d> everything_seen(const Sighting& sighting);
+
+/// Index into `points` of the point nearest `predicted`, if one lies within `gate` mm.
+std::optional<std::size_t> nearest(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& predicted,
+                                   double gate);
+
+/// How far an object seen before a move of length `moved` may appear from its predicted place.
+double tracking_gate(double moved);
+
+/// The view the map-maker predicts for `hold`: the window placed with the landmark exactly at its
+/// corner. The real window is off by the adjust's residual (up to its tolerance), so it is judged
+/// from everything seen, border caps included: an object is in view when its place relative to the
+/// exact window is strictly inside it. The exact window is also the map-maker's axis-aligned one:
+/// `heading` (Pilot::heading) undoes the window's turn. Points are in real window coordinates.
+struct HeldView {
+  std::vector<Eigen::Vector2d> points;
+  std::size_t reference = 0;  ///< the held landmark
+  std::vector<double> depth;  ///< per point: how far inside the exact window, mm (to its nearest border)
+  /// Objects just outside the exact window (within NavigatorConfig::view_margin): the map-maker,
+  /// placing objects with its own errors, may have counted them in view.
+  std::vector<Eigen::Vector2d> just_outside;
+  std::vector<double> outside_depth;  ///< per object just outside: how far inside (negative)
+};
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading,
+                   double margin = 0);
+
+/// Visual servoing: brings the landmark now seen at `landmark` to `corner`. On success the landmark
+/// is held there (within the adjust tolerance) and `landmark` is where it is seen; a Failure when it
+/// is lost from sight or does not settle.
+std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner corner);
+
+/// The landmark `description` selects in the view of `hold`, with the map-maker's functions.
+std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark);
+
+/// Slides the window along the held landmark -> `via` (positive) or back until an object that was
+/// not in view enters; `found` is where that new object is seen. Failure after config.max_slide.
+std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
+                             Eigen::Vector2d& found);
+
+/// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
+/// occupied quadrants. Returns the hold it ends in (the last corner visited).
+/// `qoc_low` and `qoc_high` bound the QOC the map-maker could have computed if objects within the
+/// view margin of a border were on the other side of it.
+struct Qoc {
+  int measured = 0;
+  int low = 0;
+  int high = 0;
+};
+std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc);
+
+/// Verification and recovery of one entry (park-kender.md §7): measures the landmark's QOC and
+/// follows the entry's rules until the QOC is the verified one. `landmark` becomes the object
+/// finally taken; `record` gets the QOC and the recoveries.
+std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record);
+
+}  // namespace neopipe::nav::navigator::detail
