@@ -66,7 +66,10 @@ constexpr Colour kPath{220, 40, 40};
 constexpr Colour kWindow{230, 140, 30};
 constexpr Colour kBorder{90, 90, 90};
 
-Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route) {
+constexpr Colour kExecuted{150, 40, 180};
+constexpr Colour kHeld{40, 160, 60};
+
+Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const ExecutedRoute* executed) {
   const mm::WorldViews& views = maker.views();
   Drawing d;
   d.size = maker.workspace().size;
@@ -105,10 +108,21 @@ Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route) {
         fmt::format("; route {} -> {} ({}): D {:.1f} mm, U {:.3f}, {} steps", route->start, route->goal,
                     mm::criterion_name(route->criterion), route->distance, route->unreliability, route->steps.size());
   }
+  if (executed != nullptr) {
+    const double a = maker.options().window.side;
+    for (const Vector2d& o : executed->held_windows) d.boxes.push_back({o, o + Vector2d(a, a), kHeld, 1.0});
+    for (std::size_t i = 1; i < executed->track.size(); ++i) {
+      d.lines.push_back({executed->track[i - 1], executed->track[i], kExecuted, 1.4, false});
+    }
+    caption += "; " + executed->caption;
+  }
   d.labels.push_back({{0, -22 / d.scale}, caption, kObject, 13});
   d.labels.push_back({{0, -42 / d.scale},
                       "grey: isolated parkway edges; blue dashed: trajectories; red: route from the red start to "
-                      "the green goal; orange: the windows it holds",
+                      "the green goal; orange: the windows it holds" +
+                          std::string(executed != nullptr
+                                           ? "; purple: the window centre's true path; green boxes: windows held"
+                                           : ""),
                       kBorder,
                       11});
   return d;
@@ -196,12 +210,13 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const std::string& path) {
+void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const std::string& path,
+                    const ExecutedRoute* executed) {
   const bool is_svg = ends_with(path, ".svg");
   if (!is_svg && !ends_with(path, ".png")) {
     throw std::runtime_error(fmt::format("--plot {}: the picture must be a .png or .svg file", path));
   }
-  const Drawing d = draw(maker, route);
+  const Drawing d = draw(maker, route, executed);
   if (is_svg) {
     std::ofstream out(path);
     out << svg(d);
