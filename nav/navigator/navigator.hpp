@@ -32,6 +32,15 @@ class Arm {
 /// x along the tool's x axis, image up along its y axis, `side_px` pixels for `window.side` mm.
 struct CameraModel {
   int side_px = 256;
+  /// mm: the objects are identical marbles of this diameter. A marble cut by the image border shows
+  /// only a cap whose centroid lies inside the window even when the marble's centre does not; the
+  /// Eye uses the diameter to put such a marble's centre back where it is.
+  double object_diameter = 5.0;
+  /// px: blobs smaller than this are sensor noise, not marbles.
+  int min_blob_area = 6;
+  /// Gray levels a marble must stand above the image's median (the workspace) at its centroid. On a
+  /// view with no marble Otsu's threshold splits the noise, and these blobs are not objects.
+  int min_contrast = 30;
 };
 
 /// One look: blob centroids in window coordinates, mm, origin at the window's south-west corner,

@@ -1,0 +1,68 @@
+// Error detection and recovery (park-kender.md §7): the landmark's quadrant occupancy count, by
+// looking around it, compared with the map's; on a mismatch the map's rule for the QOC measured
+// says at which corner to hold the wrong landmark and what to seek from there.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "nav/navigator/pilot.hpp"
+
+namespace neopipe::nav::navigator::detail {
+namespace {
+
+// Rules lead back in at most a few hops (the map-maker checks chains of up to 8); more is a loop.
+constexpr int kMaxRecoveryHops = 8;
+
+}  // namespace
+
+std::optional<Failure> measure_qoc(Pilot& pilot, Eigen::Vector2d& landmark, int& qoc) {
+  // Visit the corners nearest first, so the look-around travels the least.
+  std::vector<Corner> todo(kCorners.begin(), kCorners.end());
+  qoc = 0;
+  while (!todo.empty()) {
+    const auto next = std::min_element(todo.begin(), todo.end(), [&](Corner p, Corner q) {
+      return (pilot.window().corner_point(p) - landmark).squaredNorm() <
+             (pilot.window().corner_point(q) - landmark).squaredNorm();
+    });
+    const Corner corner = *next;
+    todo.erase(next);
+    if (auto failure = adjust(pilot, landmark, corner)) return failure;
+    // Held at `corner`, the window shows the landmark's opposite quadrant: occupied when anything
+    // else is in view (WorldViews::quadrants in the map-maker).
+    if (pilot.sighting().objects.size() > 1) ++qoc;
+  }
+  return std::nullopt;
+}
+
+std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record) {
+  const std::optional<int> expected = entry.verified_qoc();
+  if (!expected) return std::nullopt;  // the map gives no QOC: nothing could be mistaken, or nothing told apart
+  for (int hop = 0;; ++hop) {
+    int qoc = 0;
+    if (auto failure = measure_qoc(pilot, landmark, qoc)) return failure;
+    record.measured_qoc = qoc;
+    if (qoc == *expected) {
+      record.verified = true;
+      return std::nullopt;
+    }
+    const RecoveryRule* rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
+    if (rule == nullptr) {
+      return Failure{Ending::unrecoverable,
+                     fmt::format("the landmark reached has QOC {} where the map expects {}, and {}", qoc, *expected,
+                                 pilot.config().recovery ? "no recovery rule applies" : "recovery is off")};
+    }
+    if (hop >= kMaxRecoveryHops) {
+      return Failure{Ending::unrecoverable,
+                     fmt::format("{} recovery rules applied without reaching QOC {}", hop, *expected)};
+    }
+    if (auto failure = adjust(pilot, landmark, *rule->corner)) return failure;
+    Eigen::Vector2d next = landmark;
+    if (auto failure = seek(pilot, landmark, rule->seek, next)) return failure;
+    landmark = next;
+    ++record.recoveries;
+    ++pilot.report().recoveries;
+  }
+}
+
+}  // namespace neopipe::nav::navigator::detail
