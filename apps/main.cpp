@@ -9,10 +9,10 @@
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
 #include "apps/cli_support.hpp"
-#include "apps/run_command.hpp"
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
 
 namespace {

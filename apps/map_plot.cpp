@@ -47,8 +47,9 @@ struct Label {
 // Primitives in workspace mm; the backends map them to pixels (y up in the world, down on screen).
 struct Drawing {
   Vector2d size;
-  double scale = 1;  // px per mm
-  double pad = 30;   // px
+  double scale = 1;    // px per mm
+  double pad = 30;     // px
+  double footer = 40;  // px below the workspace for the caption and legend lines
   std::vector<Box> boxes;
   std::vector<Line> lines;
   std::vector<Disk> disks;
@@ -56,7 +57,7 @@ struct Drawing {
 
   Vector2d px(const Vector2d& p) const { return {pad + p.x() * scale, pad + (size.y() - p.y()) * scale}; }
   int width() const { return static_cast<int>(std::ceil(size.x() * scale + 2 * pad)); }
-  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + 40)); }
+  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + footer)); }
 };
 
 constexpr Colour kObject{20, 20, 20};
@@ -119,12 +120,17 @@ Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route, c
   d.labels.push_back({{0, -22 / d.scale}, caption, kObject, 13});
   d.labels.push_back({{0, -42 / d.scale},
                       "grey: isolated parkway edges; blue dashed: trajectories; red: route from the red start to "
-                      "the green goal; orange: the windows it holds" +
-                          std::string(executed != nullptr
-                                           ? "; purple: the window centre's true path; green boxes: windows held"
-                                           : ""),
+                      "the green goal; orange: the windows it holds",
                       kBorder,
                       11});
+  if (executed != nullptr) {
+    d.footer = 60;
+    d.labels.push_back({{0, -60 / d.scale},
+                        "purple: where the navigator's window centre really went; green: the windows where it held "
+                        "a landmark",
+                        kBorder,
+                        11});
+  }
   return d;
 }
 

@@ -24,7 +24,8 @@ namespace nv = nav::navigator;
 using nlohmann::json;
 
 void check_non_negative(const char* option, double value, const char* unit) {
-  if (!(value >= 0) || !std::isfinite(value)) throw UsageError{fmt::format("{} {}: must be >= 0 {}", option, value, unit)};
+  if (!(value >= 0) || !std::isfinite(value))
+    throw UsageError{fmt::format("{} {}: must be >= 0 {}", option, value, unit)};
 }
 
 std::string_view ending_name(nv::Ending e) {
@@ -46,15 +47,16 @@ struct Setup {
 };
 
 Setup make_setup(const NavArgs& a) {
-  if (!(a.window > 0) || !std::isfinite(a.window)) throw UsageError{fmt::format("--window {}: must be > 0 mm", a.window)};
+  if (!(a.window > 0) || !std::isfinite(a.window))
+    throw UsageError{fmt::format("--window {}: must be > 0 mm", a.window)};
   check_non_negative("--sigma-map", a.sigma_map, "mm");
   check_non_negative("--sigma-move", a.sigma_move, "mm per mm");
   check_non_negative("--sigma-rot", a.sigma_rot, "degrees per mm");
   Setup s;
   s.world = sim::load_world(a.world);  // WorldError: one line naming the file
   if (s.world.objects.size() < 2) {
-    throw mm::MapError(fmt::format("{}: the world has {} objects; a journey needs at least two", a.world,
-                                   s.world.objects.size()));
+    throw mm::MapError(
+        fmt::format("{}: the world has {} objects; a journey needs at least two", a.world, s.world.objects.size()));
   }
   if (a.window > std::min(s.world.size.x(), s.world.size.y())) {
     throw mm::MapError(
@@ -222,8 +224,8 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
   std::cout << fmt::format(
       "{} journeys on {} ({} objects), cost {}, sigma map {} mm, move {} /mm, rotation {} deg/mm, recovery {}, "
       "seed {}\n\n{:<20} {:>7} {:>8}  {}\n",
-      n, a.world, s.world.objects.size(), a.cost, a.sigma_map, a.sigma_move, a.sigma_rot,
-      a.no_recovery ? "off" : "on", a.seed, "OUTCOME", "COUNT", "RATE", "95% CI");
+      n, a.world, s.world.objects.size(), a.cost, a.sigma_map, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on",
+      a.seed, "OUTCOME", "COUNT", "RATE", "95% CI");
   const auto row = [&](std::string_view name, std::int64_t count) {
     const Interval w = wilson_interval(count, n);
     std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,

@@ -69,10 +69,9 @@ class TruthObserver final : public nv::Observer {
     HeldLandmark h;
     h.entry = entry;
     h.tool = tool;
-    h.intended = entry == 0 ? route_.start
-                 : entry - 1 < route_.steps.size()
-                     ? route_.steps[entry - 1].step.landmark
-                     : std::numeric_limits<std::uint32_t>::max();
+    h.intended = entry == 0                        ? route_.start
+                 : entry - 1 < route_.steps.size() ? route_.steps[entry - 1].step.landmark
+                                                   : std::numeric_limits<std::uint32_t>::max();
     h.offset = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < world_.objects.size(); ++i) {
       const double d = (world_.objects[i] - at).norm();
@@ -156,15 +155,15 @@ JourneyResult run_journey(const sim::World& world, const nav::mapmaker::Route& r
   const nav::WindowModel& window = settings.navigator.window;
   const Vector2d tool =
       window.origin(world.objects.at(route.start), route.start_corner) + Vector2d(window.side / 2, window.side / 2);
-  sim::SimulatedArm arm(arm_for_world(world, window.side), motion_errors(settings.errors), stream_seed(settings.seed, 0),
-                        sim::Pose2{tool.x(), tool.y(), 0});
+  sim::SimulatedArm arm(arm_for_world(world, window.side), motion_errors(settings.errors),
+                        stream_seed(settings.seed, 0), sim::Pose2{tool.x(), tool.y(), 0});
   sim::OnboardCameraConfig camera;
   camera.side_px = settings.navigator.camera.side_px;
   camera.window_mm = window.side;
   sim::ImageModel image;
   image.seed = stream_seed(settings.seed, 1);
-  const auto source = sim::onboard_camera_source(world, camera, image, [&arm] { return arm.pose(); },
-                                                 pipeline::io::ColorFormat::gray);
+  const auto source = sim::onboard_camera_source(
+      world, camera, image, [&arm] { return arm.pose(); }, pipeline::io::ColorFormat::gray);
   nv::Eye eye(*source, settings.navigator);
   SimArmAdapter adapter(arm, result);
   TruthObserver truth(world, route, arm, window.side, result, observer);

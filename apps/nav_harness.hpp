@@ -21,7 +21,7 @@ namespace neopipe::apps {
 
 /// The experiment's error settings, as the command line gives them.
 struct ExperimentErrors {
-  double sigma_map = 1.0;    ///< sd per axis of the map-maker's object positions, mm
+  double sigma_map = 1.0;     ///< sd per axis of the map-maker's object positions, mm
   double sigma_move = 0.003;  ///< sd of the arm's translation (along and across) per mm moved
   double sigma_rot = 0.002;   ///< sd of the arm's heading, degrees per mm moved
 };
@@ -53,9 +53,9 @@ struct JourneyResult {
   Outcome outcome = Outcome::fail_lost;
   std::vector<HeldLandmark> held;
   std::int64_t frames = 0;
-  double commanded_travel = 0;  ///< mm, what the navigator asked for
-  double true_travel = 0;       ///< mm, what the tool really moved
-  int refused_moves = 0;        ///< commands the arm could not reach (it stayed where it was)
+  double commanded_travel = 0;         ///< mm, what the navigator asked for
+  double true_travel = 0;              ///< mm, what the tool really moved
+  int refused_moves = 0;               ///< commands the arm could not reach (it stayed where it was)
   std::vector<Eigen::Vector2d> track;  ///< the window's true centre (the tool) after each move, start first
 };
 

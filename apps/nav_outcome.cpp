@@ -6,8 +6,8 @@
 namespace neopipe::apps {
 
 std::string_view outcome_name(Outcome o) {
-  constexpr std::array<std::string_view, 6> names{"success_direct",    "success_recovered",  "success_unaware",
-                                                  "fail_lost",         "fail_unrecoverable", "fail_unaware"};
+  constexpr std::array<std::string_view, 6> names{"success_direct", "success_recovered",  "success_unaware",
+                                                  "fail_lost",      "fail_unrecoverable", "fail_unaware"};
   return names[static_cast<std::size_t>(o)];
 }
 

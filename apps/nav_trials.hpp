@@ -34,7 +34,7 @@ struct TrialRecord {
 };
 
 struct TrialsSummary {
-  std::vector<TrialRecord> trials;  ///< in trial order
+  std::vector<TrialRecord> trials;       ///< in trial order
   std::array<std::int64_t, 6> counts{};  ///< by Outcome
   std::int64_t frames = 0;
   double seconds = 0;  ///< wall time of the journeys

@@ -44,7 +44,8 @@ void NavVideo::frame_seen(const pipeline::io::SourceFrame& frame, const nav::nav
   } else {
     bgr = frame.image.clone();
   }
-  for (const Eigen::Vector2d& p : sighting.objects) cv::circle(bgr, to_pixel(p), 9, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
+  for (const Eigen::Vector2d& p : sighting.objects)
+    cv::circle(bgr, to_pixel(p), 9, cv::Scalar(0, 200, 0), 1, cv::LINE_AA);
   if (held_) {
     cv::drawMarker(bgr, to_pixel(*held_), cv::Scalar(0, 0, 255), cv::MARKER_CROSS, 18, 2, cv::LINE_AA);
     cv::putText(bgr, fmt::format("entry {}", entry_), {6, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 255), 1,
