@@ -17,13 +17,15 @@ std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner co
       return Failure{Ending::lost, fmt::format("could not hold the landmark at {} in {} moves (still {:.2f} mm off)",
                                                corner_name(corner), moves, error.norm())};
     }
-    const Sighting& seen = pilot.move_and_look(error);
+    // The landmark may start as a cap cut by the border (a trajectory's newcomer): track it among
+    // everything seen.
+    const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.move_and_look(error));
     const auto i = nearest(seen, target, tracking_gate(error.norm()));
     if (!i) {
       return Failure{Ending::lost,
                      fmt::format("lost sight of the landmark while adjusting it to {}", corner_name(corner))};
     }
-    landmark = seen.objects[*i];
+    landmark = seen[*i];
   }
 }
 

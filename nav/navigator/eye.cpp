@@ -4,9 +4,11 @@
 // in order on the calling thread, as the executor would run them for a lone frame, without its
 // worker threads (and without the process-wide thread limit it sets while it lives).
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -50,6 +52,82 @@ int background_level(const cv::Mat& gray) {
   return 255;
 }
 
+// A disk of radius r whose centre lies at c from a border line (negative: beyond it) shows the part
+// on this side; its centroid lies at centroid_of_cut(c, r) from the line. Monotonic in c.
+double centroid_of_cut(double c, double r) {
+  const double h = std::clamp(c, -r, r);
+  // The segment beyond the line: area and the distance of its centroid from the disk's centre.
+  const double cut_area = r * r * std::acos(h / r) - h * std::sqrt(r * r - h * h);
+  const double kept = std::numbers::pi * r * r - cut_area;
+  if (kept <= 1e-12) return 0;
+  const double cut_arm = cut_area > 1e-12 ? (2.0 / 3.0) * std::pow(r * r - h * h, 1.5) / cut_area : 0.0;
+  return c + cut_area * cut_arm / kept;
+}
+
+// The centre distance c (from the border, px) of a marble whose cut blob has its centroid at
+// `centroid` from the border: centroid_of_cut inverted by bisection.
+double uncut_centre(double centroid, double r) {
+  double lo = -r;
+  double hi = std::max(centroid, r);
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (centroid_of_cut(mid, r) < centroid ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// A disk of radius r centred at c (px, from a corner of the image along the two borders that meet
+// there; negative beyond them) shows the part inside both: its area and centroid, by integrating
+// its chords column by column.
+struct Cut {
+  double area = 0;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+};
+Cut corner_cut(const Eigen::Vector2d& c, double r) {
+  constexpr int columns = 64;
+  const double x0 = std::max(0.0, c.x() - r);
+  const double x1 = c.x() + r;
+  Cut cut;
+  if (x1 <= x0) return cut;
+  const double dx = (x1 - x0) / columns;
+  double sx = 0;
+  double sy = 0;
+  for (int i = 0; i < columns; ++i) {
+    const double x = x0 + (i + 0.5) * dx;
+    const double h = std::sqrt(std::max(0.0, r * r - (x - c.x()) * (x - c.x())));
+    const double y0 = std::max(0.0, c.y() - h);
+    const double y1 = c.y() + h;
+    if (y1 <= y0) continue;
+    const double len = (y1 - y0) * dx;
+    cut.area += len;
+    sx += x * len;
+    sy += 0.5 * (y0 + y1) * len;
+  }
+  if (cut.area > 0) cut.centroid = {sx / cut.area, sy / cut.area};
+  return cut;
+}
+
+// The centre of a marble whose blob, cut by two borders at a corner, has its centroid at `centroid`
+// (px from that corner along both borders): Newton's method on corner_cut, started from the
+// one-border answers.
+Eigen::Vector2d uncut_corner_centre(const Eigen::Vector2d& centroid, double r) {
+  Eigen::Vector2d c(uncut_centre(centroid.x(), r), uncut_centre(centroid.y(), r));
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const Eigen::Vector2d f = corner_cut(c, r).centroid - centroid;
+    if (f.norm() < 1e-3) break;
+    constexpr double h = 0.05;
+    Eigen::Matrix2d jacobian;
+    jacobian.col(0) = (corner_cut(c + Eigen::Vector2d(h, 0), r).centroid - corner_cut(c, r).centroid) / h;
+    jacobian.col(1) = (corner_cut(c + Eigen::Vector2d(0, h), r).centroid - corner_cut(c, r).centroid) / h;
+    if (std::abs(jacobian.determinant()) < 1e-9) break;
+    Eigen::Vector2d step = jacobian.inverse() * f;
+    if (step.norm() > r) step *= r / step.norm();  // a deep cap's centroid barely moves: keep steps sane
+    c -= step;
+    c = c.cwiseMax(-r).cwiseMin(centroid);  // the cut only ever pulls the centroid inward
+  }
+  return c;
+}
+
 }  // namespace
 
 struct Eye::Impl {
@@ -58,6 +136,7 @@ struct Eye::Impl {
         config(navigator),
         graph(gray_blob_graph()),
         blobs(*graph.find_output(pipeline::PortType::blobs)) {
+    blob_radius_px = 0.5 * config.camera.object_diameter / config.window.side * config.camera.side_px;
     values.resize(graph.nodes().size());
     for (std::size_t i = 0; i < values.size(); ++i) values[i].resize(graph.nodes()[i].impl->outputs().size());
   }
@@ -100,6 +179,7 @@ struct Eye::Impl {
   cv::Size size_;
   pipeline::io::SourceFrame last;
   std::int64_t frames = 0;
+  double blob_radius_px = 0;  // a whole marble's blob radius at the current threshold
 };
 
 Eye::Eye(pipeline::io::FrameSource& source, const NavigatorConfig& config)
@@ -121,8 +201,20 @@ Sighting Eye::look() {
   const double a = eye.config.window.side;
   const double mm_per_px_x = a / image.cols;
   const double mm_per_px_y = a / image.rows;
-  const double radius_px = 0.5 * eye.config.camera.object_diameter / mm_per_px_x;
   const int background = background_level(image);
+
+  // The radius a marble's blob has at this frame's threshold, from the blobs the border does not cut
+  // (kept from earlier frames when every blob is cut).
+  double radii = 0;
+  int whole = 0;
+  for (const kernels::Blob& b : blobs) {
+    const bool cut = b.x0 == 0 || b.y0 == 0 || b.x0 + b.width == image.cols || b.y0 + b.height == image.rows;
+    if (!cut && b.area >= eye.config.camera.min_blob_area) {
+      radii += std::sqrt(static_cast<double>(b.area) / std::numbers::pi);
+      ++whole;
+    }
+  }
+  if (whole > 0) eye.blob_radius_px = radii / whole;
 
   Sighting s;
   s.frame = eye.frames++;
@@ -131,20 +223,36 @@ Sighting Eye::look() {
     const int u = std::clamp(static_cast<int>(b.cx), 0, image.cols - 1);
     const int v = std::clamp(static_cast<int>(b.cy), 0, image.rows - 1);
     if (image.at<std::uint8_t>(v, u) < background + eye.config.camera.min_contrast) continue;
-    // Pixel centres are at (u + 0.5, v + 0.5). A blob cut by a border is a cap of its marble: along
-    // that axis the marble's centre lies one radius in from the cap's far edge.
+    // Pixel centres are at (u + 0.5, v + 0.5). A blob cut by a border is the part of its marble's
+    // disk on this side: its centroid is pulled inward, by an amount known for a disk cut by a line.
     double cx = b.cx + 0.5;
     double cy = b.cy + 0.5;
+    const double r = eye.blob_radius_px;
     const bool west = b.x0 == 0;
     const bool east = b.x0 + b.width == image.cols;
-    const bool south = b.y0 + b.height == image.rows;
     const bool north = b.y0 == 0;
-    if (west != east) cx = west ? b.x0 + b.width - radius_px : b.x0 + radius_px;
-    if (north != south) cy = north ? b.y0 + b.height - radius_px : b.y0 + radius_px;
+    const bool south = b.y0 + b.height == image.rows;
+    const bool cut_x = west != east;
+    const bool cut_y = north != south;
+    if (cut_x && cut_y) {
+      // Cut at a corner: both borders pull the centroid, so both are undone at once.
+      const Eigen::Vector2d from_corner(west ? cx : image.cols - cx, north ? cy : image.rows - cy);
+      const Eigen::Vector2d c = uncut_corner_centre(from_corner, r);
+      cx = west ? c.x() : image.cols - c.x();
+      cy = north ? c.y() : image.rows - c.y();
+    } else if (cut_x) {
+      cx = west ? uncut_centre(cx, r) : image.cols - uncut_centre(image.cols - cx, r);
+    } else if (cut_y) {
+      cy = north ? uncut_centre(cy, r) : image.rows - uncut_centre(image.rows - cy, r);
+    }
     const Eigen::Vector2d p(cx * mm_per_px_x, a - cy * mm_per_px_y);
     // Visible means the centre strictly inside the window (park-kender.md §2), as the map-maker
     // assumed: a cap whose marble's centre lies outside is not an object in view.
-    if (p.x() > 0 && p.x() < a && p.y() > 0 && p.y() < a) s.objects.push_back(p);
+    if (p.x() > 0 && p.x() < a && p.y() > 0 && p.y() < a) {
+      s.objects.push_back(p);
+    } else {
+      s.partial.push_back(p);
+    }
   }
   return s;
 }

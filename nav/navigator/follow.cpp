@@ -13,18 +13,20 @@ using detail::Pilot;
 
 namespace {
 
-std::optional<Failure> take_start(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& held) {
+std::optional<Failure> take_start(Pilot& pilot, const MapEntry& entry, detail::Hold& held) {
   // (*, c): the harness placed the start object at c. Whatever lies nearest that corner is it.
-  const Corner corner = entry.adjust.value_or(Corner::SW);
-  const Sighting& seen = pilot.look();
-  const auto start = detail::nearest(seen, pilot.window().corner_point(corner), 2 * detail::tracking_gate(0));
-  if (!start) return Failure{Ending::lost, fmt::format("no object held at the start corner {}", corner_name(corner))};
-  held = seen.objects[*start];
-  return detail::adjust(pilot, held, corner);
+  held.corner = entry.adjust.value_or(Corner::SW);
+  const std::vector<Eigen::Vector2d> seen = detail::everything_seen(pilot.look());
+  const Eigen::Vector2d corner = pilot.window().corner_point(held.corner);
+  const auto start = detail::nearest(seen, corner, 2 * detail::tracking_gate(0));
+  if (!start)
+    return Failure{Ending::lost, fmt::format("no object held at the start corner {}", corner_name(held.corner))};
+  held.landmark = seen[*start];
+  return detail::adjust(pilot, held.landmark, held.corner);
 }
 
-std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& held, EntryRecord& record) {
-  Eigen::Vector2d landmark = held;
+std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, detail::Hold& held, EntryRecord& record) {
+  Eigen::Vector2d landmark = held.landmark;
   if (auto failure = detail::seek(pilot, held, entry.seek, landmark)) return failure;
   if (entry.slide) {
     Eigen::Vector2d found = landmark;
@@ -34,8 +36,9 @@ std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, Eigen::
   if (auto failure = detail::verify(pilot, entry, landmark, record)) return failure;
   if (entry.adjust) {
     if (auto failure = detail::adjust(pilot, landmark, *entry.adjust)) return failure;
+    held.corner = *entry.adjust;
   }
-  held = landmark;
+  held.landmark = landmark;
   return std::nullopt;
 }
 
@@ -49,7 +52,7 @@ JourneyReport follow(const CustomMap& map, Eye& eye, Arm& arm, const NavigatorCo
     report.reason = "the custom map has no entries";
     return report;
   }
-  Eigen::Vector2d held = Eigen::Vector2d::Zero();
+  detail::Hold held{Eigen::Vector2d::Zero(), Corner::SW};
   for (std::size_t i = 0; i < map.entries.size(); ++i) {
     EntryRecord record;
     record.entry = i;
@@ -63,7 +66,7 @@ JourneyReport follow(const CustomMap& map, Eye& eye, Arm& arm, const NavigatorCo
       report.reason = fmt::format("entry {} {}: {}", i, format_entry(map.entries[i]), failure->reason);
       return report;
     }
-    if (observer != nullptr) observer->landmark_held(i, held);
+    if (observer != nullptr) observer->landmark_held(i, held.landmark);
   }
   report.ending = Ending::arrived;
   return report;

@@ -48,16 +48,20 @@ struct CameraModel {
 struct Sighting {
   std::int64_t frame = 0;
   std::vector<Eigen::Vector2d> objects;
+  /// Marbles cut by the image border whose centres lie just outside the window (up to about a
+  /// radius), centres estimated from the visible cap. Not in view; they let the navigator see what is
+  /// about to enter while it slides, and judge views as if its landmark were exactly at its corner.
+  std::vector<Eigen::Vector2d> partial;
 };
 
 struct NavigatorConfig {
-  WindowModel window;                ///< side a and margin m, as the map-maker assumed
+  WindowModel window;  ///< side a and margin m, as the map-maker assumed
   CameraModel camera;
-  double adjust_tolerance = 0.4;     ///< mm: a landmark this close to its corner position is held
-  int max_adjust_moves = 8;          ///< servo iterations before the adjust counts as failed
-  double slide_step = 5;             ///< mm per move while sliding along a trajectory
-  double max_slide = 2000;           ///< mm: a trajectory that meets nothing this far is lost
-  bool recovery = true;              ///< apply the map's recovery rules (off: the "no recovery" runs)
+  double adjust_tolerance = 0.4;  ///< mm: a landmark this close to its corner position is held
+  int max_adjust_moves = 8;       ///< servo iterations before the adjust counts as failed
+  double slide_step = 2;          ///< mm per move while sliding (below a marble radius: see slide.cpp)
+  double max_slide = 2000;        ///< mm: a trajectory that meets nothing this far is lost
+  bool recovery = true;           ///< apply the map's recovery rules (off: the "no recovery" runs)
 };
 
 /// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six
@@ -81,9 +85,9 @@ struct JourneyReport {
   Ending ending = Ending::arrived;
   std::string reason;  ///< for lost / unrecoverable: what could not be done, in the map's words
   std::vector<EntryRecord> entries;
-  int recoveries = 0;                ///< total recovery rules applied
-  std::int64_t frames = 0;           ///< onboard frames processed
-  double commanded_travel = 0;       ///< mm, sum of |commanded moves|
+  int recoveries = 0;           ///< total recovery rules applied
+  std::int64_t frames = 0;      ///< onboard frames processed
+  double commanded_travel = 0;  ///< mm, sum of |commanded moves|
 };
 
 /// Called by the navigator as it goes, so a harness can check each step against ground truth at the

@@ -21,7 +21,6 @@ class Pilot {
 
   const NavigatorConfig& config() const { return config_; }
   const WindowModel& window() const { return config_.window; }
-  Observer* observer() const { return observer_; }
   JourneyReport& report() { return report_; }
 
   /// Grabs and processes a frame; the sighting stays current until the next look.
@@ -45,33 +44,53 @@ struct Failure {
   std::string reason;
 };
 
-/// Index of the object of `sighting` nearest `predicted`, if one lies within `gate` mm.
-std::optional<std::size_t> nearest(const Sighting& sighting, const Eigen::Vector2d& predicted, double gate);
+/// A landmark held at a corner: where it is seen in the window (within the adjust tolerance of the
+/// corner's position).
+struct Hold {
+  Eigen::Vector2d landmark;
+  Corner corner = Corner::SW;
+};
+
+/// Everything the sighting shows, in view or cut by the border.
+std::vector<Eigen::Vector2d> everything_seen(const Sighting& sighting);
+
+/// Index into `points` of the point nearest `predicted`, if one lies within `gate` mm.
+std::optional<std::size_t> nearest(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& predicted,
+                                   double gate);
 
 /// How far an object seen before a move of length `moved` may appear from its predicted place.
 double tracking_gate(double moved);
 
-/// Visual servoing: brings the landmark now seen at `landmark` to `corner`. Returns where it is
-/// held (within the adjust tolerance), or a Failure when it is lost from sight or does not settle.
+/// The view the map-maker predicts for `hold`: the window placed with the landmark exactly at its
+/// corner. The real window is off by the adjust's residual (up to its tolerance), so it is judged
+/// from everything seen, border caps included: an object is in view when its place relative to the
+/// exact window is strictly inside it. Points are in real window coordinates.
+struct HeldView {
+  std::vector<Eigen::Vector2d> points;
+  std::size_t reference = 0;  ///< the held landmark
+};
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window);
+
+/// Visual servoing: brings the landmark now seen at `landmark` to `corner`. On success the landmark
+/// is held there (within the adjust tolerance) and `landmark` is where it is seen; a Failure when it
+/// is lost from sight or does not settle.
 std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner corner);
 
-/// The landmark `description` selects in the current view, the object seen at `reference` being
-/// the reference. Its position, or a Failure.
-std::optional<Failure> seek(Pilot& pilot, const Eigen::Vector2d& reference, Description description,
-                            Eigen::Vector2d& landmark);
+/// The landmark `description` selects in the view of `hold`, with the map-maker's functions.
+std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark);
 
-/// Slides the window along reference -> landmark (positive) or back until an object that was not in
-/// view enters; `found` is where that new object is seen. Failure after config.max_slide.
-std::optional<Failure> slide(Pilot& pilot, const Eigen::Vector2d& reference, const Eigen::Vector2d& via,
-                             Direction direction, Eigen::Vector2d& found);
+/// Slides the window along the held landmark -> `via` (positive) or back until an object that was
+/// not in view enters; `found` is where that new object is seen. Failure after config.max_slide.
+std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
+                             Eigen::Vector2d& found);
 
-/// Looks around the landmark at `landmark` (holds it at each corner in turn) and counts the occupied
-/// quadrants. The landmark ends held at the last corner visited; `landmark` is updated.
-std::optional<Failure> measure_qoc(Pilot& pilot, Eigen::Vector2d& landmark, int& qoc);
+/// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
+/// occupied quadrants. Returns the hold it ends in (the last corner visited).
+std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc);
 
 /// Verification and recovery of one entry (park-kender.md §7): measures the landmark's QOC and
-/// follows the entry's rules until the QOC is the verified one. Updates `landmark` to the object
-/// finally taken, and `record`.
+/// follows the entry's rules until the QOC is the verified one. `landmark` becomes the object
+/// finally taken; `record` gets the QOC and the recoveries.
 std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record);
 
 }  // namespace neopipe::nav::navigator::detail

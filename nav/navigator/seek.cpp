@@ -1,5 +1,5 @@
-// Seek (park-kender.md §3): the landmark a description selects in the current view, with the
-// map-maker's own selection functions (nav/common/landmarks.hpp), so both choose alike.
+// Seek (park-kender.md §3): the landmark a description selects in the view of the held landmark,
+// with the map-maker's own selection functions (nav/common/landmarks.hpp), so both choose alike.
 
 #include <fmt/format.h>
 
@@ -8,18 +8,14 @@
 
 namespace neopipe::nav::navigator::detail {
 
-std::optional<Failure> seek(Pilot& pilot, const Eigen::Vector2d& reference, Description description,
-                            Eigen::Vector2d& landmark) {
-  const Sighting& seen = pilot.sighting();
-  // The reference was located in this very sighting, so it is where it was last seen.
-  const auto held = nearest(seen, reference, tracking_gate(0));
-  if (!held) return Failure{Ending::lost, "lost sight of the reference landmark"};
-  const auto chosen = select_landmark(description, View{seen.objects, *held});
+std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark) {
+  const HeldView view = held_view(pilot.sighting(), hold, pilot.window());
+  const auto chosen = select_landmark(description, View{view.points, view.reference});
   if (!chosen) {
     return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",
-                                             description_name(description), seen.objects.size() - 1)};
+                                             description_name(description), view.points.size() - 1)};
   }
-  landmark = seen.objects[*chosen];
+  landmark = view.points[*chosen];
   return std::nullopt;
 }
 

@@ -1,7 +1,12 @@
 // Trajectories (park-kender.md §4): the window slides along the line reference -> landmark (Trajp)
-// or back (Trajn) in short steps. Everything in view at the start is tracked by its predicted
-// place; the first object seen that is none of them has entered through the leading edges, and is
-// the trajectory's goal, as the map-maker's sweep (mapmaker/trajectories.cpp) predicts.
+// or back (Trajn). The map-maker sweeps the window continuously and takes the first object to enter
+// (mapmaker/trajectories.cpp); the navigator moves in steps, so it must not step over an object that
+// only clips a corner of the window. It sees marbles cut by the border (Sighting::partial) up to
+// about a radius beyond it, so with steps shorter than that every object is seen, inside or as a
+// cap, before or as it enters: the navigator predicts each cap's entry along the slide and stops
+// where the first one enters. Everything in view at the start is tracked by its predicted place and
+// never counts as entering. Entries are judged in the exact window (the reference exactly at its
+// corner, as the map-maker placed it), which moves with the real one.
 
 #include <fmt/format.h>
 
@@ -14,72 +19,114 @@
 namespace neopipe::nav::navigator::detail {
 namespace {
 
-// How far back along the slide the object now at `q` entered the window: it was at q + s u, inside
-// while 0 < q_k + s u_k < a on both axes. The larger, the earlier it entered.
-double entered_ago(const Eigen::Vector2d& q, const Eigen::Vector2d& u, double side) {
-  double back = std::numeric_limits<double>::infinity();
+// The slide distances (relative to now) during which a point now at `q` (exact-window coordinates)
+// is strictly inside the window: it moves by -t u as the window moves by t u. Empty if never.
+struct Interval {
+  double lo = 0;
+  double hi = 0;
+};
+std::optional<Interval> inside_during(const Eigen::Vector2d& q, const Eigen::Vector2d& u, double side) {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 2; ++k) {
-    if (u[k] > 0) back = std::min(back, (side - q[k]) / u[k]);
-    if (u[k] < 0) back = std::min(back, q[k] / -u[k]);
+    if (u[k] == 0) {
+      if (!(q[k] > 0 && q[k] < side)) return std::nullopt;
+      continue;
+    }
+    const double t1 = (q[k] - side) / u[k];
+    const double t2 = q[k] / u[k];
+    lo = std::max(lo, std::min(t1, t2));
+    hi = std::min(hi, std::max(t1, t2));
   }
-  return back;
+  if (!(lo < hi)) return std::nullopt;
+  return Interval{lo, hi};
+}
+
+// Matches what is seen to the known objects' predicted places; returns what matches none.
+std::vector<Eigen::Vector2d> newcomers(const std::vector<Eigen::Vector2d>& seen, std::vector<Eigen::Vector2d>& known,
+                                       double gate) {
+  std::vector<char> matched(known.size(), 0);
+  std::vector<Eigen::Vector2d> out;
+  for (const Eigen::Vector2d& p : seen) {
+    std::optional<std::size_t> best;
+    double best_d2 = gate * gate;
+    for (std::size_t k = 0; k < known.size(); ++k) {
+      const double d2 = (p - known[k]).squaredNorm();
+      if (!matched[k] && d2 <= best_d2) {
+        best = k;
+        best_d2 = d2;
+      }
+    }
+    if (best) {
+      matched[*best] = 1;
+      known[*best] = p;
+    } else {
+      out.push_back(p);
+    }
+  }
+  return out;
 }
 
 }  // namespace
 
-std::optional<Failure> slide(Pilot& pilot, const Eigen::Vector2d& reference, const Eigen::Vector2d& via,
-                             Direction direction, Eigen::Vector2d& found) {
+std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
+                             Eigen::Vector2d& found) {
   const NavigatorConfig& config = pilot.config();
   const double side = config.window.side;
-  const Eigen::Vector2d line = via - reference;
+  const Eigen::Vector2d line = via - hold.landmark;
   if (line.norm() == 0) return Failure{Ending::lost, "the trajectory's two landmarks coincide"};
-  const Eigen::Vector2d heading =
-      direction == Direction::positive ? line.normalized() : Eigen::Vector2d(-line.normalized());
+  const Eigen::Vector2d u = direction == Direction::positive ? line.normalized() : Eigen::Vector2d(-line.normalized());
+  const Eigen::Vector2d offset = hold.landmark - config.window.corner_point(hold.corner);
 
-  // Known objects, by where they are expected now. Kept after they leave the window (until well
-  // past its edge), so one flickering at the trailing edge is not taken for a newcomer.
-  std::vector<Eigen::Vector2d> known = pilot.sighting().objects;
-  Eigen::Vector2d origin_reference = reference;  // the reference's predicted place: ties are broken from it
-  std::vector<char> matched;
-  std::vector<std::size_t> newcomers;
-  for (double slid = 0; slid < config.max_slide;) {
-    const double step = std::min(config.slide_step, config.max_slide - slid);
-    const Eigen::Vector2d d = step * heading;
-    for (Eigen::Vector2d& p : known) p -= d;
-    origin_reference -= d;
-    const Sighting& seen = pilot.move_and_look(d);
-    slid += step;
-
-    const double gate = tracking_gate(step);
-    matched.assign(known.size(), 0);
-    newcomers.clear();
-    for (std::size_t i = 0; i < seen.objects.size(); ++i) {
-      std::optional<std::size_t> best;
-      double best_d2 = gate * gate;
-      for (std::size_t k = 0; k < known.size(); ++k) {
-        const double d2 = (seen.objects[i] - known[k]).squaredNorm();
-        if (!matched[k] && d2 <= best_d2) {
-          best = k;
-          best_d2 = d2;
-        }
-      }
-      if (best) {
-        matched[*best] = 1;
-        known[*best] = seen.objects[i];
-      } else {
-        newcomers.push_back(i);
+  // Kept after they leave the window (until well past its edge), so one flickering at the trailing
+  // edge is not taken for a newcomer.
+  std::vector<Eigen::Vector2d> known = held_view(pilot.sighting(), hold, config.window).points;
+  Eigen::Vector2d reference = hold.landmark;  // predicted place: ties are broken from it, as the map-maker does
+  double gate = tracking_gate(0);
+  double slid = 0;
+  for (;;) {
+    const std::vector<Eigen::Vector2d> fresh = newcomers(everything_seen(pilot.sighting()), known, gate);
+    // A newcomer inside entered during the last step; of several, the one that entered first.
+    std::optional<Eigen::Vector2d> goal;
+    double goal_entered = 0;
+    for (const Eigen::Vector2d& p : fresh) {
+      const auto when = inside_during(p - offset, u, side);
+      if (!when || when->lo > 0 || when->hi <= 0) continue;  // not inside now
+      if (!goal || when->lo < goal_entered || (when->lo == goal_entered && preferred(reference, p, *goal))) {
+        goal = p;
+        goal_entered = when->lo;
       }
     }
-    if (!newcomers.empty()) {
-      // Several may have come in during one step: the goal is the one that entered first.
-      std::size_t goal = newcomers.front();
-      for (const std::size_t i : newcomers) {
-        const double ago = entered_ago(seen.objects[i], heading, side);
-        const double best = entered_ago(seen.objects[goal], heading, side);
-        if (ago > best || (ago == best && preferred(origin_reference, seen.objects[i], seen.objects[goal]))) goal = i;
-      }
-      found = seen.objects[goal];
+    if (goal) {
+      found = *goal;
       return std::nullopt;
+    }
+    const double step = std::min(config.slide_step, config.max_slide - slid);
+    if (step <= 0) break;
+    // A cap that will enter within the next step: stop just inside its entry, where it is in view.
+    std::optional<Eigen::Vector2d> next;
+    Interval next_when;
+    for (const Eigen::Vector2d& p : fresh) {
+      const auto when = inside_during(p - offset, u, side);
+      if (!when || when->lo <= 0 || when->lo > step) continue;  // already gone by, or not yet
+      if (!next || when->lo < next_when.lo || (when->lo == next_when.lo && preferred(reference, p, *next))) {
+        next = p;
+        next_when = *when;
+      }
+    }
+    const double t = next ? next_when.lo + std::min(0.5, 0.5 * (next_when.hi - next_when.lo)) : step;
+    const Eigen::Vector2d d = t * u;
+    for (Eigen::Vector2d& p : known) p -= d;
+    reference -= d;
+    pilot.move_and_look(d);
+    slid += t;
+    gate = tracking_gate(t);
+    if (next) {
+      const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.sighting());
+      if (const auto i = nearest(seen, *next - d, gate)) {
+        found = seen[*i];
+        return std::nullopt;
+      }
     }
     std::erase_if(known,
                   [&](const Eigen::Vector2d& p) { return (p.array() < -side).any() || (p.array() > 2 * side).any(); });

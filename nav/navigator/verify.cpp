@@ -16,21 +16,21 @@ constexpr int kMaxRecoveryHops = 8;
 
 }  // namespace
 
-std::optional<Failure> measure_qoc(Pilot& pilot, Eigen::Vector2d& landmark, int& qoc) {
+std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc) {
   // Visit the corners nearest first, so the look-around travels the least.
   std::vector<Corner> todo(kCorners.begin(), kCorners.end());
   qoc = 0;
   while (!todo.empty()) {
     const auto next = std::min_element(todo.begin(), todo.end(), [&](Corner p, Corner q) {
-      return (pilot.window().corner_point(p) - landmark).squaredNorm() <
-             (pilot.window().corner_point(q) - landmark).squaredNorm();
+      return (pilot.window().corner_point(p) - hold.landmark).squaredNorm() <
+             (pilot.window().corner_point(q) - hold.landmark).squaredNorm();
     });
-    const Corner corner = *next;
+    hold.corner = *next;
     todo.erase(next);
-    if (auto failure = adjust(pilot, landmark, corner)) return failure;
-    // Held at `corner`, the window shows the landmark's opposite quadrant: occupied when anything
+    if (auto failure = adjust(pilot, hold.landmark, hold.corner)) return failure;
+    // Held at this corner, the window shows the landmark's opposite quadrant: occupied when anything
     // else is in view (WorldViews::quadrants in the map-maker).
-    if (pilot.sighting().objects.size() > 1) ++qoc;
+    if (held_view(pilot.sighting(), hold, pilot.window()).points.size() > 1) ++qoc;
   }
   return std::nullopt;
 }
@@ -38,9 +38,11 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Eigen::Vector2d& landmark, int&
 std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record) {
   const std::optional<int> expected = entry.verified_qoc();
   if (!expected) return std::nullopt;  // the map gives no QOC: nothing could be mistaken, or nothing told apart
+  Hold hold{landmark, Corner::SW};
   for (int hop = 0;; ++hop) {
     int qoc = 0;
-    if (auto failure = measure_qoc(pilot, landmark, qoc)) return failure;
+    if (auto failure = measure_qoc(pilot, hold, qoc)) return failure;
+    landmark = hold.landmark;
     record.measured_qoc = qoc;
     if (qoc == *expected) {
       record.verified = true;
@@ -56,9 +58,11 @@ std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector
       return Failure{Ending::unrecoverable,
                      fmt::format("{} recovery rules applied without reaching QOC {}", hop, *expected)};
     }
-    if (auto failure = adjust(pilot, landmark, *rule->corner)) return failure;
-    Eigen::Vector2d next = landmark;
-    if (auto failure = seek(pilot, landmark, rule->seek, next)) return failure;
+    hold.corner = *rule->corner;
+    if (auto failure = adjust(pilot, hold.landmark, hold.corner)) return failure;
+    Eigen::Vector2d next = hold.landmark;
+    if (auto failure = seek(pilot, hold, rule->seek, next)) return failure;
+    hold.landmark = next;
     landmark = next;
     ++record.recoveries;
     ++pilot.report().recoveries;

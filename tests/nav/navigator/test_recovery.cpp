@@ -1,0 +1,110 @@
+// Verification and recovery: a map whose entry leads to the wrong landmark, with a rule that
+// brings the navigator back; the same mistake without the rule, or with recovery off, is an aware
+// failure. The world is built so that the shared descriptors make the mistake (checked with the
+// map-maker's own views first).
+
+#include <gtest/gtest.h>
+
+#include "journey.hpp"
+#include "nav/mapmaker/views.hpp"
+#include "sim/world.hpp"
+
+namespace neopipe::nav::navigator {
+namespace {
+
+using test_rig::Rig;
+using test_rig::RigOptions;
+
+constexpr std::size_t S = 0, A = 1, B = 2, D = 3;
+
+// From S held at SW the isolated landmark is B (QOC 3); the map intends A (QOC 2). Held at NW, B
+// sees only A, so "(3, NW, Isol)" leads from the mistake back to A.
+sim::World mistake_world() {
+  sim::World w;
+  w.size = {300, 300};
+  w.objects = {{100, 100}, {140, 105}, {105, 140}, {115, 175}};
+  return w;
+}
+
+class Recovery : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const mapmaker::Workspace ws = test_rig::workspace_of(world_);
+    const mapmaker::WorldViews views(ws, WindowModel::with_side(50));
+    ASSERT_EQ(views.isolated({S, Corner::SW}), B);
+    ASSERT_EQ(views.qoc(A), 2);
+    ASSERT_EQ(views.qoc(B), 3);
+    ASSERT_EQ(views.isolated({B, Corner::NW}), A);
+  }
+  sim::World world_ = mistake_world();
+};
+
+TEST_F(Recovery, ARuleLeadsBackFromTheWrongLandmark) {
+  for (const bool errors : {false, true}) {
+    RigOptions o;
+    if (!errors) o.errors = sim::MotionErrors::none();
+    Rig rig(world_, o);
+    const CustomMap map = parse_custom_map("((*, SW), (Isol, (3, NW, Isol), (2, -), -))");
+    const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, A);
+    EXPECT_EQ(j.report.recoveries, 1);
+    ASSERT_EQ(j.report.entries.size(), 2u);
+    EXPECT_TRUE(j.report.entries[1].verified);
+    EXPECT_EQ(j.report.entries[1].measured_qoc, 2);
+    EXPECT_EQ(j.report.entries[1].recoveries, 1);
+  }
+}
+
+TEST_F(Recovery, RecoveryAlsoWorksMidJourney) {
+  // The same mistake, then the journey goes on from A: adjusted to NE it sees S alone.
+  Rig rig(world_);
+  const CustomMap map = parse_custom_map("((*, SW), (Isol, (3, NW, Isol), (2, -), NE), (Obvious, -))");
+  const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+  ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+  EXPECT_EQ(j.final_object, S);
+  EXPECT_EQ(j.report.recoveries, 1);
+}
+
+TEST_F(Recovery, NoRuleForTheQocMeasuredIsAnAwareFailure) {
+  Rig rig(world_);
+  const CustomMap map = parse_custom_map("((*, SW), (Isol, (2, -), -))");
+  const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+  EXPECT_EQ(j.report.ending, Ending::unrecoverable);
+  EXPECT_NE(j.report.reason.find("QOC 3"), std::string::npos) << j.report.reason;
+  ASSERT_EQ(j.report.entries.size(), 2u);
+  EXPECT_FALSE(j.report.entries[1].verified);
+  EXPECT_EQ(j.report.entries[1].measured_qoc, 3);
+  EXPECT_EQ(j.report.recoveries, 0);
+}
+
+TEST_F(Recovery, WithRecoveryOffTheMistakeIsAnAwareFailure) {
+  Rig rig(world_);
+  rig.config().recovery = false;
+  const CustomMap map = parse_custom_map("((*, SW), (Isol, (3, NW, Isol), (2, -), -))");
+  const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+  EXPECT_EQ(j.report.ending, Ending::unrecoverable);
+  EXPECT_NE(j.report.reason.find("recovery is off"), std::string::npos) << j.report.reason;
+}
+
+TEST_F(Recovery, AMapDescribingNothingInViewIsLost) {
+  Rig rig(world_);
+  // Held at NE, S sees nothing (everything lies to its North-East): no Obvious landmark.
+  const CustomMap map = parse_custom_map("((*, NE), (Obvious, -))");
+  const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::NE);
+  EXPECT_EQ(j.report.ending, Ending::lost);
+  EXPECT_FALSE(j.report.reason.empty());
+}
+
+TEST_F(Recovery, ATrajectoryIntoEmptySpaceIsLost) {
+  Rig rig(world_);
+  rig.config().max_slide = 150;
+  // From A held at NE the obvious landmark is S; sliding towards it goes West, into nothing.
+  const CustomMap map = parse_custom_map("((*, NE), (Obvious, Trajp, -))");
+  const test_rig::Journey j = test_rig::travel(rig, map, A, Corner::NE);
+  EXPECT_EQ(j.report.ending, Ending::lost);
+  EXPECT_NE(j.report.reason.find("without meeting"), std::string::npos) << j.report.reason;
+}
+
+}  // namespace
+}  // namespace neopipe::nav::navigator
