@@ -19,8 +19,12 @@ std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner co
     }
     // The landmark may start as a cap cut by the border (a trajectory's newcomer): track it among
     // everything seen.
+    // A marble cut by the border is located less well (a deep cap by up to a millimetre or so).
+    const double radius = pilot.config().camera.object_diameter / 2;
+    const double side = pilot.window().side;
+    const bool cut = landmark.minCoeff() < radius || landmark.maxCoeff() > side - radius;
     const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.move_and_look(error));
-    const auto i = nearest(seen, target, tracking_gate(error.norm()));
+    const auto i = nearest(seen, target, tracking_gate(error.norm()) + (cut ? radius : 0.0));
     if (!i) {
       return Failure{Ending::lost,
                      fmt::format("lost sight of the landmark while adjusting it to {}", corner_name(corner))};

@@ -1,5 +1,8 @@
 #include "nav/navigator/pilot.hpp"
 
+#include <Eigen/Geometry>
+#include <cmath>
+
 namespace neopipe::nav::navigator::detail {
 
 const Sighting& Pilot::look() {
@@ -10,10 +13,50 @@ const Sighting& Pilot::look() {
 }
 
 const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
-  // The navigator never turns on purpose: it has no compass to turn back by.
+  // The navigator never turns on purpose: it corrects for the turns the arm makes by error in what
+  // it concludes from its views (held_view), not by turning back.
   arm_.move_relative(d.x(), d.y(), 0.0);
   report_.commanded_travel += d.norm();
-  return look();
+  const std::vector<Eigen::Vector2d> before = sighting_.objects;
+  look();
+  // The turn since the last look: the rotation that best takes the objects' predicted places to
+  // where they are seen (least squares about their centroids; the translation error drops out).
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;
+  const double gate = tracking_gate(d.norm());
+  // Marbles cut by the border are located a little less well, which is a lot for an angle.
+  const double clear = config_.camera.object_diameter / 2 + 0.5;
+  const double side = config_.window.side;
+  const auto whole = [&](const Eigen::Vector2d& p) { return p.minCoeff() > clear && p.maxCoeff() < side - clear; };
+  for (const Eigen::Vector2d& p : before) {
+    if (!whole(p)) continue;
+    const auto i = nearest(sighting_.objects, p - d, gate);
+    if (i && whole(sighting_.objects[*i])) pairs.emplace_back(p - d, sighting_.objects[*i]);
+  }
+  if (pairs.size() < 2) return sighting_;
+  Eigen::Vector2d mean_predicted = Eigen::Vector2d::Zero();
+  Eigen::Vector2d mean_seen = Eigen::Vector2d::Zero();
+  for (const auto& [predicted, seen] : pairs) {
+    mean_predicted += predicted;
+    mean_seen += seen;
+  }
+  mean_predicted /= static_cast<double>(pairs.size());
+  mean_seen /= static_cast<double>(pairs.size());
+  double cross = 0;
+  double dot = 0;
+  double spread = 0;
+  for (const auto& [predicted, seen] : pairs) {
+    const Eigen::Vector2d a = predicted - mean_predicted;
+    const Eigen::Vector2d b = seen - mean_seen;
+    cross += a.x() * b.y() - a.y() * b.x();
+    dot += a.dot(b);
+    spread += a.squaredNorm();
+  }
+  // Objects close together measure the turn poorly: only a baseline of two centimetres or more counts.
+  constexpr double min_spread = 200;  // mm^2
+  if (spread < min_spread) return sighting_;
+  // Seen objects turned by -delta when the window turned by delta.
+  heading_ -= std::atan2(cross, dot);
+  return sighting_;
 }
 
 std::vector<Eigen::Vector2d> everything_seen(const Sighting& sighting) {
@@ -45,13 +88,16 @@ double tracking_gate(double moved) {
   return 1.5 + 0.05 * moved;
 }
 
-HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window) {
-  const Eigen::Vector2d offset = hold.landmark - window.corner_point(hold.corner);
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading) {
+  // The exact window: axis-aligned as the map-maker's (the window's turn undone), the landmark at
+  // its corner.
+  const Eigen::Rotation2Dd unturn(heading);
+  const Eigen::Vector2d corner = window.corner_point(hold.corner);
   HeldView view;
   const std::vector<Eigen::Vector2d> all = everything_seen(sighting);
   const auto reference = nearest(all, hold.landmark, tracking_gate(0));
   for (std::size_t i = 0; i < all.size(); ++i) {
-    const Eigen::Vector2d exact = all[i] - offset;
+    const Eigen::Vector2d exact = corner + unturn * (all[i] - hold.landmark);
     const bool inside = exact.x() > 0 && exact.x() < window.side && exact.y() > 0 && exact.y() < window.side;
     if (reference && i == *reference) {
       view.reference = view.points.size();

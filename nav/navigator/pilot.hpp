@@ -29,6 +29,12 @@ class Pilot {
   /// Commands a move of the window by `d` (tool frame, no turn) and looks again.
   const Sighting& move_and_look(const Eigen::Vector2d& d);
 
+  /// The navigator's estimate of how far its window has turned (rad, counter-clockwise) since the
+  /// journey began, when the map-maker's axes and the window's were the same. The arm turns a little
+  /// by error on every move and the navigator has no compass, but objects seen before and after a
+  /// move show the turn: the window's heading is dead-reckoned from them.
+  double heading() const { return heading_; }
+
  private:
   Eye& eye_;
   Arm& arm_;
@@ -36,6 +42,7 @@ class Pilot {
   Observer* observer_;
   JourneyReport& report_;
   Sighting sighting_;
+  double heading_ = 0;
 };
 
 /// A failure the navigator is aware of; follow() turns it into the report's ending and reason.
@@ -64,12 +71,13 @@ double tracking_gate(double moved);
 /// The view the map-maker predicts for `hold`: the window placed with the landmark exactly at its
 /// corner. The real window is off by the adjust's residual (up to its tolerance), so it is judged
 /// from everything seen, border caps included: an object is in view when its place relative to the
-/// exact window is strictly inside it. Points are in real window coordinates.
+/// exact window is strictly inside it. The exact window is also the map-maker's axis-aligned one:
+/// `heading` (Pilot::heading) undoes the window's turn. Points are in real window coordinates.
 struct HeldView {
   std::vector<Eigen::Vector2d> points;
   std::size_t reference = 0;  ///< the held landmark
 };
-HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window);
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading);
 
 /// Visual servoing: brings the landmark now seen at `landmark` to `corner`. On success the landmark
 /// is held there (within the adjust tolerance) and `landmark` is where it is seen; a Failure when it

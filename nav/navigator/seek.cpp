@@ -9,7 +9,7 @@
 namespace neopipe::nav::navigator::detail {
 
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark) {
-  const HeldView view = held_view(pilot.sighting(), hold, pilot.window());
+  const HeldView view = held_view(pilot.sighting(), hold, pilot.window(), pilot.heading());
   const auto chosen = select_landmark(description, View{view.points, view.reference});
   if (!chosen) {
     return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",

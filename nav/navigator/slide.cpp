@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
 
@@ -76,22 +77,32 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
   const Eigen::Vector2d line = via - hold.landmark;
   if (line.norm() == 0) return Failure{Ending::lost, "the trajectory's two landmarks coincide"};
   const Eigen::Vector2d u = direction == Direction::positive ? line.normalized() : Eigen::Vector2d(-line.normalized());
-  const Eigen::Vector2d offset = hold.landmark - config.window.corner_point(hold.corner);
+  const Eigen::Vector2d corner = config.window.corner_point(hold.corner);
 
   // Kept after they leave the window (until well past its edge), so one flickering at the trailing
   // edge is not taken for a newcomer.
-  std::vector<Eigen::Vector2d> known = held_view(pilot.sighting(), hold, config.window).points;
+  std::vector<Eigen::Vector2d> known = held_view(pilot.sighting(), hold, config.window, pilot.heading()).points;
   Eigen::Vector2d reference = hold.landmark;  // predicted place: ties are broken from it, as the map-maker does
   double gate = tracking_gate(0);
   double slid = 0;
+  double last_step = 0;
   for (;;) {
+    // The exact window's coordinates (see held_view): it moves with the real one, axis-aligned.
+    const Eigen::Rotation2Dd unturn(pilot.heading());
+    const Eigen::Vector2d u_exact = unturn * u;
+    const auto exact = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+      return corner + unturn * (p - hold.landmark);
+    };
     const std::vector<Eigen::Vector2d> fresh = newcomers(everything_seen(pilot.sighting()), known, gate);
     // A newcomer inside entered during the last step; of several, the one that entered first.
     std::optional<Eigen::Vector2d> goal;
     double goal_entered = 0;
     for (const Eigen::Vector2d& p : fresh) {
-      const auto when = inside_during(p - offset, u, side);
+      const auto when = inside_during(exact(p), u_exact, side);
       if (!when || when->lo > 0 || when->hi <= 0) continue;  // not inside now
+      // Entries happen through the leading edges during the last step. Anything else unmatched is a
+      // known object's ghost: a deep cap at the trailing edge, located too poorly to be matched.
+      if (-when->lo > last_step + 1.0) continue;
       if (!goal || when->lo < goal_entered || (when->lo == goal_entered && preferred(reference, p, *goal))) {
         goal = p;
         goal_entered = when->lo;
@@ -107,7 +118,7 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     std::optional<Eigen::Vector2d> next;
     Interval next_when;
     for (const Eigen::Vector2d& p : fresh) {
-      const auto when = inside_during(p - offset, u, side);
+      const auto when = inside_during(exact(p), u_exact, side);
       if (!when || when->lo <= 0 || when->lo > step) continue;  // already gone by, or not yet
       if (!next || when->lo < next_when.lo || (when->lo == next_when.lo && preferred(reference, p, *next))) {
         next = p;
@@ -120,6 +131,7 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     reference -= d;
     pilot.move_and_look(d);
     slid += t;
+    last_step = t;
     gate = tracking_gate(t);
     if (next) {
       const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.sighting());

@@ -30,7 +30,7 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc) {
     if (auto failure = adjust(pilot, hold.landmark, hold.corner)) return failure;
     // Held at this corner, the window shows the landmark's opposite quadrant: occupied when anything
     // else is in view (WorldViews::quadrants in the map-maker).
-    if (held_view(pilot.sighting(), hold, pilot.window()).points.size() > 1) ++qoc;
+    if (held_view(pilot.sighting(), hold, pilot.window(), pilot.heading()).points.size() > 1) ++qoc;
   }
   return std::nullopt;
 }
