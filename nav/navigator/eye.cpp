@@ -4,7 +4,7 @@
 // in order on the calling thread, as the executor would run them for a lone frame, without its
 // worker threads (and without the process-wide thread limit it sets while it lives).
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -84,7 +84,7 @@ struct Cut {
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
 };
 Cut corner_cut(const Eigen::Vector2d& c, double r) {
-  constexpr int columns = 64;
+  constexpr int columns = 128;
   const double x0 = std::max(0.0, c.x() - r);
   const double x1 = c.x() + r;
   Cut cut;
@@ -108,22 +108,17 @@ Cut corner_cut(const Eigen::Vector2d& c, double r) {
 }
 
 // The centre of a marble whose blob, cut by two borders at a corner, has its centroid at `centroid`
-// (px from that corner along both borders): Newton's method on corner_cut, started from the
-// one-border answers.
+// (px from that corner along both borders). The centroid moves with the centre, never faster, so
+// stepping the centre by the centroid's miss converges (slowly only for deep caps, which matter
+// little); it starts from the one-border answers, right when the two cuts barely interact.
 Eigen::Vector2d uncut_corner_centre(const Eigen::Vector2d& centroid, double r) {
   Eigen::Vector2d c(uncut_centre(centroid.x(), r), uncut_centre(centroid.y(), r));
-  for (int iteration = 0; iteration < 20; ++iteration) {
-    const Eigen::Vector2d f = corner_cut(c, r).centroid - centroid;
-    if (f.norm() < 1e-3) break;
-    constexpr double h = 0.05;
-    Eigen::Matrix2d jacobian;
-    jacobian.col(0) = (corner_cut(c + Eigen::Vector2d(h, 0), r).centroid - corner_cut(c, r).centroid) / h;
-    jacobian.col(1) = (corner_cut(c + Eigen::Vector2d(0, h), r).centroid - corner_cut(c, r).centroid) / h;
-    if (std::abs(jacobian.determinant()) < 1e-9) break;
-    Eigen::Vector2d step = jacobian.inverse() * f;
-    if (step.norm() > r) step *= r / step.norm();  // a deep cap's centroid barely moves: keep steps sane
-    c -= step;
-    c = c.cwiseMax(-r).cwiseMin(centroid);  // the cut only ever pulls the centroid inward
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const Cut cut = corner_cut(c, r);
+    if (cut.area <= 0) break;
+    const Eigen::Vector2d miss = centroid - cut.centroid;
+    c = (c + miss).cwiseMax(-r).cwiseMin(centroid);  // the cuts only ever pull the centroid inward
+    if (miss.norm() < 1e-3) break;
   }
   return c;
 }
@@ -203,14 +198,24 @@ Sighting Eye::look() {
   const double mm_per_px_y = a / image.rows;
   const int background = background_level(image);
 
-  // The radius a marble's blob has at this frame's threshold, from the blobs the border does not cut
-  // (kept from earlier frames when every blob is cut).
+  // Marbles: blobs big enough not to be sensor noise and bright at their centroid (on a view with no
+  // marble, Otsu's threshold splits the noise into blobs that are neither).
+  const auto marble = [&](const kernels::Blob& b) {
+    if (b.area < eye.config.camera.min_blob_area) return false;
+    const int u = std::clamp(static_cast<int>(b.cx), 0, image.cols - 1);
+    const int v = std::clamp(static_cast<int>(b.cy), 0, image.rows - 1);
+    return image.at<std::uint8_t>(v, u) >= background + eye.config.camera.min_contrast;
+  };
+  // The radius a marble's blob has at this frame's threshold, from the marbles the border does not
+  // cut and of about a marble's size (kept from earlier frames when there are none).
+  const double nominal = 0.5 * eye.config.camera.object_diameter / mm_per_px_x;
   double radii = 0;
   int whole = 0;
   for (const kernels::Blob& b : blobs) {
     const bool cut = b.x0 == 0 || b.y0 == 0 || b.x0 + b.width == image.cols || b.y0 + b.height == image.rows;
-    if (!cut && b.area >= eye.config.camera.min_blob_area) {
-      radii += std::sqrt(static_cast<double>(b.area) / std::numbers::pi);
+    const double radius = std::sqrt(static_cast<double>(b.area) / std::numbers::pi);
+    if (!cut && marble(b) && radius > 0.7 * nominal && radius < 1.3 * nominal) {
+      radii += radius;
       ++whole;
     }
   }
@@ -219,10 +224,7 @@ Sighting Eye::look() {
   Sighting s;
   s.frame = eye.frames++;
   for (const kernels::Blob& b : blobs) {
-    if (b.area < eye.config.camera.min_blob_area) continue;
-    const int u = std::clamp(static_cast<int>(b.cx), 0, image.cols - 1);
-    const int v = std::clamp(static_cast<int>(b.cy), 0, image.rows - 1);
-    if (image.at<std::uint8_t>(v, u) < background + eye.config.camera.min_contrast) continue;
+    if (!marble(b)) continue;
     // Pixel centres are at (u + 0.5, v + 0.5). A blob cut by a border is the part of its marble's
     // disk on this side: its centroid is pulled inward, by an amount known for a disk cut by a line.
     double cx = b.cx + 0.5;

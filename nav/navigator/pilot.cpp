@@ -1,6 +1,7 @@
 #include "nav/navigator/pilot.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace neopipe::nav::navigator::detail {
@@ -23,8 +24,8 @@ const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
   // where they are seen (least squares about their centroids; the translation error drops out).
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;
   const double gate = tracking_gate(d.norm());
-  // Marbles cut by the border are located a little less well, which is a lot for an angle.
-  const double clear = config_.camera.object_diameter / 2 + 0.5;
+  // Marbles whose centre lies near the border show a small cap, located less well: a lot for an angle.
+  const double clear = 0.5;
   const double side = config_.window.side;
   const auto whole = [&](const Eigen::Vector2d& p) { return p.minCoeff() > clear && p.maxCoeff() < side - clear; };
   for (const Eigen::Vector2d& p : before) {
@@ -51,11 +52,15 @@ const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
     dot += a.dot(b);
     spread += a.squaredNorm();
   }
-  // Objects close together measure the turn poorly: only a baseline of two centimetres or more counts.
-  constexpr double min_spread = 200;  // mm^2
-  if (spread < min_spread) return sighting_;
+  if (spread <= 0) return sighting_;
+  // Objects close together measure the turn poorly. Weigh the measurement against what a move of
+  // this length is expected to turn (least-squares angle variance: 2 sigma^2 / spread), so that
+  // many short moves do not pile up measurement noise.
+  const double expected = config_.turn_sigma0 + config_.turn_sigma_per_mm * d.norm();
+  const double noise = 2 * config_.position_sigma * config_.position_sigma / spread;
+  const double weight = expected * expected / (expected * expected + noise);
   // Seen objects turned by -delta when the window turned by delta.
-  heading_ -= std::atan2(cross, dot);
+  heading_ -= weight * std::atan2(cross, dot);
   return sighting_;
 }
 
@@ -88,7 +93,8 @@ double tracking_gate(double moved) {
   return 1.5 + 0.05 * moved;
 }
 
-HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading) {
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading,
+                   double margin) {
   // The exact window: axis-aligned as the map-maker's (the window's turn undone), the landmark at
   // its corner.
   const Eigen::Rotation2Dd unturn(heading);
@@ -98,17 +104,23 @@ HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel
   const auto reference = nearest(all, hold.landmark, tracking_gate(0));
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Eigen::Vector2d exact = corner + unturn * (all[i] - hold.landmark);
-    const bool inside = exact.x() > 0 && exact.x() < window.side && exact.y() > 0 && exact.y() < window.side;
+    const double depth = std::min({exact.x(), exact.y(), window.side - exact.x(), window.side - exact.y()});
     if (reference && i == *reference) {
       view.reference = view.points.size();
       view.points.push_back(all[i]);
-    } else if (inside) {
+      view.depth.push_back(depth);
+    } else if (depth > 0) {
       view.points.push_back(all[i]);
+      view.depth.push_back(depth);
+    } else if (depth > -margin) {
+      view.just_outside.push_back(all[i]);
+      view.outside_depth.push_back(depth);
     }
   }
   if (!reference) {  // not seen (cannot happen right after an adjust): keep it where it was held
     view.reference = view.points.size();
     view.points.push_back(hold.landmark);
+    view.depth.push_back(window.margin);
   }
   return view;
 }

@@ -76,8 +76,14 @@ double tracking_gate(double moved);
 struct HeldView {
   std::vector<Eigen::Vector2d> points;
   std::size_t reference = 0;  ///< the held landmark
+  std::vector<double> depth;  ///< per point: how far inside the exact window, mm (to its nearest border)
+  /// Objects just outside the exact window (within NavigatorConfig::view_margin): the map-maker,
+  /// placing objects with its own errors, may have counted them in view.
+  std::vector<Eigen::Vector2d> just_outside;
+  std::vector<double> outside_depth;  ///< per object just outside: how far inside (negative)
 };
-HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading);
+HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel& window, double heading,
+                   double margin = 0);
 
 /// Visual servoing: brings the landmark now seen at `landmark` to `corner`. On success the landmark
 /// is held there (within the adjust tolerance) and `landmark` is where it is seen; a Failure when it
@@ -94,7 +100,14 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
 
 /// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
 /// occupied quadrants. Returns the hold it ends in (the last corner visited).
-std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc);
+/// `qoc_low` and `qoc_high` bound the QOC the map-maker could have computed if objects within the
+/// view margin of a border were on the other side of it.
+struct Qoc {
+  int measured = 0;
+  int low = 0;
+  int high = 0;
+};
+std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc);
 
 /// Verification and recovery of one entry (park-kender.md §7): measures the landmark's QOC and
 /// follows the entry's rules until the QOC is the verified one. `landmark` becomes the object

@@ -16,10 +16,11 @@ constexpr int kMaxRecoveryHops = 8;
 
 }  // namespace
 
-std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc) {
+std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc) {
   // Visit the corners nearest first, so the look-around travels the least.
   std::vector<Corner> todo(kCorners.begin(), kCorners.end());
-  qoc = 0;
+  qoc = Qoc{};
+  const double margin = pilot.config().view_margin;
   while (!todo.empty()) {
     const auto next = std::min_element(todo.begin(), todo.end(), [&](Corner p, Corner q) {
       return (pilot.window().corner_point(p) - hold.landmark).squaredNorm() <
@@ -30,7 +31,14 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, int& qoc) {
     if (auto failure = adjust(pilot, hold.landmark, hold.corner)) return failure;
     // Held at this corner, the window shows the landmark's opposite quadrant: occupied when anything
     // else is in view (WorldViews::quadrants in the map-maker).
-    if (held_view(pilot.sighting(), hold, pilot.window(), pilot.heading()).points.size() > 1) ++qoc;
+    const HeldView view = held_view(pilot.sighting(), hold, pilot.window(), pilot.heading(), margin);
+    bool clearly = false;
+    for (std::size_t i = 0; i < view.points.size(); ++i)
+      clearly = clearly || (i != view.reference && view.depth[i] > margin);
+    const bool seen = view.points.size() > 1;
+    qoc.measured += seen;
+    qoc.low += clearly;
+    qoc.high += seen || !view.just_outside.empty();
   }
   return std::nullopt;
 }
@@ -40,11 +48,16 @@ std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector
   if (!expected) return std::nullopt;  // the map gives no QOC: nothing could be mistaken, or nothing told apart
   Hold hold{landmark, Corner::SW};
   for (int hop = 0;; ++hop) {
-    int qoc = 0;
-    if (auto failure = measure_qoc(pilot, hold, qoc)) return failure;
+    Qoc measured;
+    if (auto failure = measure_qoc(pilot, hold, measured)) return failure;
+    const int qoc = measured.measured;
     landmark = hold.landmark;
     record.measured_qoc = qoc;
-    if (qoc == *expected) {
+    // Objects within the view margin of a border may lie on the other side for the map-maker: a QOC
+    // it could have computed for this landmark verifies it, unless a rule names the QOC seen.
+    const bool explained = measured.low <= *expected && *expected <= measured.high;
+    const RecoveryRule* seen_rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
+    if (qoc == *expected || (explained && seen_rule == nullptr)) {
       record.verified = true;
       return std::nullopt;
     }

@@ -108,3 +108,29 @@ TEST_F(Recovery, ATrajectoryIntoEmptySpaceIsLost) {
 
 }  // namespace
 }  // namespace neopipe::nav::navigator
+
+namespace neopipe::nav::navigator {
+namespace {
+
+// The map-maker places objects with errors: an object it counted in view may lie just outside.
+TEST(ViewMargin, AnObviousLandmarkJustOutsideTheWindowIsStillTaken) {
+  sim::World world;
+  world.size = {300, 300};
+  world.objects = {{100, 100}, {147.8, 120}};  // the second 0.3 mm beyond the East border with the first at SW
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, -))");
+  {
+    Rig rig(world);
+    const test_rig::Journey j = test_rig::travel(rig, map, 0, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, 1u);
+  }
+  {
+    Rig rig(world);
+    rig.config().view_margin = 0;
+    const test_rig::Journey j = test_rig::travel(rig, map, 0, Corner::SW);
+    EXPECT_EQ(j.report.ending, Ending::lost);
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::navigator
