@@ -199,6 +199,17 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
       ci[name] = {w.low, w.high};
     }
     const Interval reached = wilson_interval(t.reached(), n);
+    // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
+    // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
+    json journeys = json::array();
+    for (const TrialRecord& r : t.trials) {
+      journeys.push_back({{"from", r.from},
+                          {"to", r.to},
+                          {"outcome", outcome_name(r.outcome)},
+                          {"recoveries", r.recoveries},
+                          {"frames", r.frames},
+                          {"arm_travel", r.true_travel}});
+    }
     const json j = {{"trials", n},
                     {"outcomes", outcomes},
                     {"rates", rates},
@@ -217,7 +228,8 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
                     {"sigma_rot", a.sigma_rot},
                     {"window", a.window},
                     {"recovery", !a.no_recovery},
-                    {"seed", a.seed}};
+                    {"seed", a.seed},
+                    {"journeys", journeys}};
     std::cout << j.dump() << '\n';
     return kExitOk;
   }

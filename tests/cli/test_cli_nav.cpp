@@ -89,6 +89,13 @@ TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
     EXPECT_GE(ci[1].get<double>(), rate) << name;
   }
   EXPECT_EQ(total, 20);
+  ASSERT_EQ(a["journeys"].size(), 20U);
+  int direct = 0;
+  for (const auto& journey : a["journeys"]) {
+    EXPECT_NE(journey["from"], journey["to"]);
+    direct += journey["outcome"] == "success_direct" ? 1 : 0;
+  }
+  EXPECT_EQ(direct, a["outcomes"]["success_direct"].get<int>());
   EXPECT_EQ(a["outcomes"].size(), 6U);
   EXPECT_GT(a["frames"].get<int>(), 0);
   EXPECT_EQ(run("2"), a);  // same seed, any thread count: the same journeys
