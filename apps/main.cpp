@@ -9,9 +9,10 @@
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
 #include "apps/cli_support.hpp"
-#include "apps/run_command.hpp"
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
+#include "apps/nav_command.hpp"
+#include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
 
 namespace {
@@ -56,6 +57,8 @@ int run_main(int argc, char** argv) {
   CLI::App* map = add_map_command(app, map_args);
   MapStatsArgs map_stats_args;
   CLI::App* map_stats = add_map_stats_command(map, map_stats_args);
+  NavArgs nav_args;
+  CLI::App* nav = add_nav_command(app, nav_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -63,7 +66,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -88,6 +91,7 @@ int run_main(int argc, char** argv) {
   }
   if (map_stats->parsed()) return guarded("map stats", [&] { return map_stats_command(map_stats_args); });
   if (map->parsed()) return guarded("map", [&] { return map_command(map_args); });
+  if (nav->parsed()) return guarded("nav", [&] { return nav_command(nav_args); });
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();
     return guarded("sim " + subs.front()->get_name(), [&] { return sim_command(*sim, sim_args); });

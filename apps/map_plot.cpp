@@ -47,8 +47,9 @@ struct Label {
 // Primitives in workspace mm; the backends map them to pixels (y up in the world, down on screen).
 struct Drawing {
   Vector2d size;
-  double scale = 1;  // px per mm
-  double pad = 30;   // px
+  double scale = 1;    // px per mm
+  double pad = 30;     // px
+  double footer = 40;  // px below the workspace for the caption and legend lines
   std::vector<Box> boxes;
   std::vector<Line> lines;
   std::vector<Disk> disks;
@@ -56,7 +57,7 @@ struct Drawing {
 
   Vector2d px(const Vector2d& p) const { return {pad + p.x() * scale, pad + (size.y() - p.y()) * scale}; }
   int width() const { return static_cast<int>(std::ceil(size.x() * scale + 2 * pad)); }
-  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + 40)); }
+  int height() const { return static_cast<int>(std::ceil(size.y() * scale + 2 * pad + footer)); }
 };
 
 constexpr Colour kObject{20, 20, 20};
@@ -66,7 +67,10 @@ constexpr Colour kPath{220, 40, 40};
 constexpr Colour kWindow{230, 140, 30};
 constexpr Colour kBorder{90, 90, 90};
 
-Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route) {
+constexpr Colour kExecuted{150, 40, 180};
+constexpr Colour kHeld{40, 160, 60};
+
+Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const ExecutedRoute* executed) {
   const mm::WorldViews& views = maker.views();
   Drawing d;
   d.size = maker.workspace().size;
@@ -105,12 +109,28 @@ Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route) {
         fmt::format("; route {} -> {} ({}): D {:.1f} mm, U {:.3f}, {} steps", route->start, route->goal,
                     mm::criterion_name(route->criterion), route->distance, route->unreliability, route->steps.size());
   }
+  if (executed != nullptr) {
+    const double a = maker.options().window.side;
+    for (const Vector2d& o : executed->held_windows) d.boxes.push_back({o, o + Vector2d(a, a), kHeld, 1.0});
+    for (std::size_t i = 1; i < executed->track.size(); ++i) {
+      d.lines.push_back({executed->track[i - 1], executed->track[i], kExecuted, 1.4, false});
+    }
+    caption += "; " + executed->caption;
+  }
   d.labels.push_back({{0, -22 / d.scale}, caption, kObject, 13});
   d.labels.push_back({{0, -42 / d.scale},
                       "grey: isolated parkway edges; blue dashed: trajectories; red: route from the red start to "
                       "the green goal; orange: the windows it holds",
                       kBorder,
                       11});
+  if (executed != nullptr) {
+    d.footer = 60;
+    d.labels.push_back({{0, -60 / d.scale},
+                        "purple: where the navigator's window centre really went; green: the windows where it held "
+                        "a landmark",
+                        kBorder,
+                        11});
+  }
   return d;
 }
 
@@ -196,12 +216,13 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
-void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const std::string& path) {
+void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const std::string& path,
+                    const ExecutedRoute* executed) {
   const bool is_svg = ends_with(path, ".svg");
   if (!is_svg && !ends_with(path, ".png")) {
     throw std::runtime_error(fmt::format("--plot {}: the picture must be a .png or .svg file", path));
   }
-  const Drawing d = draw(maker, route);
+  const Drawing d = draw(maker, route, executed);
   if (is_svg) {
     std::ofstream out(path);
     out << svg(d);

@@ -1,0 +1,296 @@
+#include "apps/nav_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "apps/cli_support.hpp"
+#include "apps/map_plot.hpp"
+#include "apps/nav_harness.hpp"
+#include "apps/nav_trials.hpp"
+#include "apps/nav_video.hpp"
+#include "apps/progress.hpp"
+#include "nav/mapmaker/map_maker.hpp"
+#include "sim/world.hpp"
+
+namespace neopipe::apps {
+namespace {
+
+namespace mm = nav::mapmaker;
+namespace nv = nav::navigator;
+using nlohmann::json;
+
+void check_non_negative(const char* option, double value, const char* unit) {
+  if (!(value >= 0) || !std::isfinite(value))
+    throw UsageError{fmt::format("{} {}: must be >= 0 {}", option, value, unit)};
+}
+
+std::string_view ending_name(nv::Ending e) {
+  switch (e) {
+    case nv::Ending::arrived:
+      return "arrived";
+    case nv::Ending::lost:
+      return "lost";
+    case nv::Ending::unrecoverable:
+      return "unrecoverable";
+  }
+  return "?";
+}
+
+struct Setup {
+  sim::World world;
+  mm::MapMakerOptions options;
+  JourneySettings settings;
+};
+
+Setup make_setup(const NavArgs& a) {
+  if (!(a.window > 0) || !std::isfinite(a.window))
+    throw UsageError{fmt::format("--window {}: must be > 0 mm", a.window)};
+  check_non_negative("--sigma-map", a.sigma_map, "mm");
+  check_non_negative("--sigma-move", a.sigma_move, "mm per mm");
+  check_non_negative("--sigma-rot", a.sigma_rot, "degrees per mm");
+  Setup s;
+  s.world = sim::load_world(a.world);  // WorldError: one line naming the file
+  if (s.world.objects.size() < 2) {
+    throw mm::MapError(
+        fmt::format("{}: the world has {} objects; a journey needs at least two", a.world, s.world.objects.size()));
+  }
+  if (a.window > std::min(s.world.size.x(), s.world.size.y())) {
+    throw mm::MapError(
+        fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
+  }
+  s.options.window = nav::WindowModel::with_side(a.window);
+  // The map-maker rates its steps with the error it really has: its own position error.
+  s.options.errors.sigma = a.sigma_map;
+  s.options.errors.translation_per_mm = a.sigma_move;
+  s.options.errors.rotation_per_mm = a.sigma_rot * std::numbers::pi / 180;
+  s.settings.errors = {a.sigma_map, a.sigma_move, a.sigma_rot};
+  s.settings.navigator.window = s.options.window;
+  s.settings.navigator.recovery = !a.no_recovery;
+  s.settings.seed = a.seed;
+  return s;
+}
+
+json held_json(const JourneyResult& r, std::size_t entry) {
+  for (auto it = r.held.rbegin(); it != r.held.rend(); ++it) {
+    if (it->entry == entry) {
+      return {{"intended", it->intended}, {"held", it->actual}, {"offset", it->offset}, {"correct", it->correct}};
+    }
+  }
+  return nullptr;
+}
+
+int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
+  const auto check_id = [](const char* option, std::int64_t id) {
+    if (id < 0) throw UsageError{fmt::format("{} {}: object ids start at 0", option, id)};
+    return static_cast<std::uint32_t>(id);
+  };
+  const std::uint32_t from = check_id("--from", *a.from);
+  const std::uint32_t to = check_id("--to", *a.to);
+  mm::Route route;
+  try {
+    route = maker.plan(from, to, *mm::parse_criterion(a.cost));
+  } catch (const mm::UnreachableGoal& e) {
+    print_error("nav", e.what());
+    return kExitUnreachable;
+  }
+  std::optional<NavVideo> video;
+  if (!a.video.empty()) video.emplace(a.video, s.options.window.side, s.settings.navigator.camera.side_px);
+  const JourneyResult r = run_journey(s.world, route, s.settings, video ? &*video : nullptr);
+  if (video) video->close();
+
+  const auto& entries = route.custom_map.entries;
+  if (a.json) {
+    json j = {{"from", route.start},
+              {"to", route.goal},
+              {"cost", mm::criterion_name(route.criterion)},
+              {"custom_map", nav::format_custom_map(route.custom_map)},
+              {"planned", {{"D", route.distance}, {"U", route.unreliability}, {"steps", route.steps.size()}}},
+              {"outcome", outcome_name(r.outcome)},
+              {"reached_goal", reached_goal(r.outcome)},
+              {"ending", ending_name(r.report.ending)},
+              {"reason", r.report.reason},
+              {"recoveries", r.report.recoveries},
+              {"frames", r.frames},
+              {"commanded_travel", r.commanded_travel},
+              {"arm_travel", r.true_travel},
+              {"refused_moves", r.refused_moves},
+              {"seed", a.seed}};
+    json list = json::array();
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      json item = {{"entry", e}, {"map", nav::format_entry(entries[e])}, {"truth", held_json(r, e)}};
+      for (const nv::EntryRecord& rec : r.report.entries) {
+        if (rec.entry != e) continue;
+        item["verified"] = rec.verified;
+        item["measured_qoc"] = rec.measured_qoc ? json(*rec.measured_qoc) : json(nullptr);
+        item["recoveries"] = rec.recoveries;
+        item["frames"] = rec.frames;
+      }
+      list.push_back(item);
+    }
+    j["entries"] = list;
+    std::cout << j.dump() << '\n';
+  } else {
+    std::cout << fmt::format("route {} -> {} by {}:\n", route.start, route.goal, mm::criterion_name(route.criterion))
+              << mm::route_table(route) << "custom map:\n"
+              << nav::format_custom_map(route.custom_map) << "\n\n"
+              << fmt::format("{:>5}  {:<40} {:>8} {:>6} {:>7} {:>8} {:>4} {:>5} {:>6}\n", "ENTRY", "MAP", "INTENDED",
+                             "HELD", "OFF mm", "VERIFIED", "QOC", "RECOV", "FRAMES");
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      const json h = held_json(r, e);
+      std::string verified = "-";
+      std::string qoc = "-";
+      std::string recov = "-";
+      std::string frames = "-";
+      for (const nv::EntryRecord& rec : r.report.entries) {
+        if (rec.entry != e) continue;
+        verified = rec.verified ? "yes" : "no";
+        qoc = rec.measured_qoc ? std::to_string(*rec.measured_qoc) : "-";
+        recov = std::to_string(rec.recoveries);
+        frames = std::to_string(rec.frames);
+      }
+      std::cout << fmt::format("{:>5}  {:<40} {:>8} {:>6} {:>7} {:>8} {:>4} {:>5} {:>6}{}\n", e,
+                               nav::format_entry(entries[e]),
+                               h.is_null() ? "-" : std::to_string(h["intended"].get<std::uint32_t>()),
+                               h.is_null() ? "-" : std::to_string(h["held"].get<std::uint32_t>()),
+                               h.is_null() ? "-" : fmt::format("{:.2f}", h["offset"].get<double>()), verified, qoc,
+                               recov, frames, !h.is_null() && !h["correct"].get<bool>() ? "  WRONG" : "");
+    }
+    std::cout << fmt::format("\noutcome: {} (navigator: {}{}{}); {} recoveries\n", outcome_name(r.outcome),
+                             ending_name(r.report.ending), r.report.reason.empty() ? "" : ", ", r.report.reason,
+                             r.report.recoveries)
+              << fmt::format("frames {}, commanded travel {:.1f} mm, arm travel {:.1f} mm{}\n", r.frames,
+                             r.commanded_travel, r.true_travel,
+                             r.refused_moves > 0 ? fmt::format(", {} moves out of reach", r.refused_moves) : "");
+  }
+  if (!a.plot.empty()) {
+    ExecutedRoute executed;
+    executed.track = r.track;
+    const double half = s.options.window.side / 2;
+    for (const HeldLandmark& h : r.held) executed.held_windows.push_back(h.tool - Eigen::Vector2d(half, half));
+    executed.caption = std::string(outcome_name(r.outcome));
+    write_map_plot(maker, route, a.plot, &executed);
+  }
+  return kExitOk;
+}
+
+int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
+  const std::vector<mm::Route> routes = draw_routes(maker, *mm::parse_criterion(a.cost), *a.trials, a.seed);
+  ProgressBar bar("nav", *a.trials, true);
+  const TrialsSummary t =
+      run_trials(s.world, routes, s.settings, a.threads, [&](std::int64_t done) { bar.update(done); });
+  bar.clear();
+  const auto n = static_cast<std::int64_t>(t.trials.size());
+  const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
+  const double mean_travel = t.true_travel / static_cast<double>(n);
+  const double mean_commanded = t.commanded_travel / static_cast<double>(n);
+  if (a.json) {
+    json outcomes;
+    json rates;
+    json ci;
+    for (const Outcome o : kOutcomes) {
+      const std::string name(outcome_name(o));
+      outcomes[name] = t.count(o);
+      rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
+      const Interval w = wilson_interval(t.count(o), n);
+      ci[name] = {w.low, w.high};
+    }
+    const Interval reached = wilson_interval(t.reached(), n);
+    // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
+    // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
+    json journeys = json::array();
+    for (const TrialRecord& r : t.trials) {
+      journeys.push_back({{"from", r.from},
+                          {"to", r.to},
+                          {"outcome", outcome_name(r.outcome)},
+                          {"recoveries", r.recoveries},
+                          {"frames", r.frames},
+                          {"arm_travel", r.true_travel}});
+    }
+    const json j = {{"trials", n},
+                    {"outcomes", outcomes},
+                    {"rates", rates},
+                    {"ci95", ci},
+                    {"reached_goal", t.reached()},
+                    {"reached_goal_rate", static_cast<double>(t.reached()) / static_cast<double>(n)},
+                    {"reached_goal_ci95", {reached.low, reached.high}},
+                    {"frames", t.frames},
+                    {"seconds", t.seconds},
+                    {"frames_per_second", fps},
+                    {"mean_arm_travel", mean_travel},
+                    {"mean_commanded_travel", mean_commanded},
+                    {"cost", a.cost},
+                    {"sigma_map", a.sigma_map},
+                    {"sigma_move", a.sigma_move},
+                    {"sigma_rot", a.sigma_rot},
+                    {"window", a.window},
+                    {"recovery", !a.no_recovery},
+                    {"seed", a.seed},
+                    {"journeys", journeys}};
+    std::cout << j.dump() << '\n';
+    return kExitOk;
+  }
+  std::cout << fmt::format(
+      "{} journeys on {} ({} objects), cost {}, sigma map {} mm, move {} /mm, rotation {} deg/mm, recovery {}, "
+      "seed {}\n\n{:<20} {:>7} {:>8}  {}\n",
+      n, a.world, s.world.objects.size(), a.cost, a.sigma_map, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on",
+      a.seed, "OUTCOME", "COUNT", "RATE", "95% CI");
+  const auto row = [&](std::string_view name, std::int64_t count) {
+    const Interval w = wilson_interval(count, n);
+    std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,
+                             100.0 * static_cast<double>(count) / static_cast<double>(n), 100 * w.low, 100 * w.high);
+  };
+  for (const Outcome o : kOutcomes) row(outcome_name(o), t.count(o));
+  row("reached the goal", t.reached());
+  std::cout << fmt::format(
+      "\nframes {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n", t.frames,
+      t.seconds, fps, mean_travel, mean_commanded);
+  return kExitOk;
+}
+
+}  // namespace
+
+CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
+  CLI::App* cmd = app.add_subcommand(
+      "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
+  cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
+  cmd->add_option("--from", a.from, "Start object id (one journey)");
+  cmd->add_option("--to", a.to, "Goal object id (one journey)");
+  cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  cmd->add_option("--sigma-map", a.sigma_map, "Map-maker's position error, sd mm per axis")->capture_default_str();
+  cmd->add_option("--sigma-move", a.sigma_move, "Arm's translation error, sd mm per mm moved")->capture_default_str();
+  cmd->add_option("--sigma-rot", a.sigma_rot, "Arm's heading error, sd degrees per mm moved")->capture_default_str();
+  cmd->add_option("--seed", a.seed, "Seed of the map-maker's errors, the start/goal draws, arm errors, camera noise")
+      ->capture_default_str();
+  cmd->add_option("--trials", a.trials, "Run N journeys between random reachable pairs and print the outcome table");
+  cmd->add_flag("--no-recovery", a.no_recovery, "Navigator ignores the map's recovery rules");
+  cmd->add_option("--window", a.window, "View window side a, mm")->capture_default_str();
+  cmd->add_option("--threads", a.threads, "Journeys run in parallel on this many threads (0: all cores)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--json", a.json, "One JSON object on stdout instead of text");
+  cmd->add_option("--plot", a.plot, "One journey: draw the world, planned and executed routes (.png or .svg)");
+  cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
+  return cmd;
+}
+
+int nav_command(const NavArgs& a) {
+  if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
+  if (a.from.has_value() == a.trials.has_value()) {
+    throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};
+  }
+  if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
+  if (a.trials && (!a.plot.empty() || !a.video.empty())) {
+    throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
+  }
+  const Setup s = make_setup(a);
+  const mm::MapMaker maker(surveyed_workspace(s.world, a.sigma_map, a.seed), s.options);
+  return a.trials ? trials(a, s, maker) : one_journey(a, s, maker);
+}
+
+}  // namespace neopipe::apps

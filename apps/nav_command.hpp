@@ -1,0 +1,34 @@
+#pragma once
+// `neopipe nav`: the navigator in the simulator. One journey (--from/--to) with its custom map,
+// outcome and per-entry account, optionally plotted and filmed; or --trials N random journeys and
+// the table of their outcomes (park-kender.md §9) with 95% intervals, frames and arm travel.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace neopipe::apps {
+
+struct NavArgs {
+  std::string world;
+  std::optional<std::int64_t> from;
+  std::optional<std::int64_t> to;
+  std::string cost = "ratio";
+  double sigma_map = 1.0;
+  double sigma_move = 0.003;
+  double sigma_rot = 0.002;
+  std::uint64_t seed = 1;
+  std::optional<std::int64_t> trials;
+  bool no_recovery = false;
+  double window = 50;
+  int threads = 0;
+  bool json = false;
+  std::string plot;
+  std::string video;
+};
+
+CLI::App* add_nav_command(CLI::App& app, NavArgs& args);
+int nav_command(const NavArgs& args);
+
+}  // namespace neopipe::apps

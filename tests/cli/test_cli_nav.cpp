@@ -1,0 +1,118 @@
+// `neopipe nav`: the navigator in the simulator from the command line — one journey, trials, their
+// determinism, and bad input.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_test_support.hpp"
+
+namespace {
+using namespace neopipe::cli_testing;  // NOLINT(google-build-using-namespace)
+using nlohmann::json;
+
+// Three marbles in a row a step apart and one far away: 0 -> 2 is a short route that an error-free
+// navigator must follow; 3 cannot be reached from anywhere.
+constexpr const char* kSmallWorld =
+    "size: [200, 200]\nmarble_diameter: 5\nobjects:\n  - [100, 100]\n  - [125, 115]\n  - [150, 140]\n"
+    "  - [40, 160]\n";
+
+class NavCli : public ScratchDirTest {
+ protected:
+  std::string small_world() {
+    write_text(file("small.yaml"), kSmallWorld);
+    return file("small.yaml");
+  }
+  std::string default_world() {
+    const auto r = run_neopipe({"sim", "world", "--objects", "100", "--seed", "1", "--out", file("w.yaml")});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return file("w.yaml");
+  }
+};
+
+}  // namespace
+
+TEST_F(NavCli, HelpNamesTheOptions) {
+  const auto r = run_neopipe({"nav", "--help"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* option : {"--world", "--from", "--to", "--cost", "--sigma-map", "--sigma-move", "--sigma-rot",
+                             "--seed", "--trials", "--no-recovery", "--window", "--json", "--plot", "--video"}) {
+    EXPECT_NE(r.out.find(option), std::string::npos) << option;
+  }
+}
+
+TEST_F(NavCli, OneErrorFreeJourneyOnASmallWorldSucceeds) {
+  const std::string world = small_world();
+  const auto r = run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--sigma-map", "0", "--sigma-move",
+                              "0", "--sigma-rot", "0", "--json", "--plot", file("p.png"), "--video", file("v.avi")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["from"], 0);
+  EXPECT_EQ(j["to"], 2);
+  EXPECT_EQ(j["outcome"], "success_direct");
+  EXPECT_TRUE(j["reached_goal"].get<bool>());
+  EXPECT_EQ(j["ending"], "arrived");
+  EXPECT_GT(j["frames"].get<int>(), 0);
+  ASSERT_FALSE(j["entries"].empty());
+  const json& last = j["entries"].back()["truth"];
+  EXPECT_EQ(last["held"], 2);
+  EXPECT_TRUE(last["correct"].get<bool>());
+  EXPECT_GT(fs::file_size(file("p.png")), 0U);
+  EXPECT_GT(fs::file_size(file("v.avi")), 0U);
+
+  const auto text = run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2"});
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("custom map:"), std::string::npos);
+  EXPECT_NE(text.out.find("outcome: "), std::string::npos);
+}
+
+TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
+  const std::string world = default_world();
+  const auto run = [&](const std::string& threads) {
+    const auto r =
+        run_neopipe({"nav", "--world", world, "--trials", "20", "--seed", "7", "--json", "--threads", threads});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    json j = json::parse(r.out);
+    // Wall-clock figures differ between runs; everything else must not.
+    j.erase("seconds");
+    j.erase("frames_per_second");
+    return j;
+  };
+  const json a = run("1");
+  EXPECT_EQ(a["trials"], 20);
+  int total = 0;
+  for (const auto& [name, count] : a["outcomes"].items()) {
+    total += count.get<int>();
+    const auto ci = a["ci95"][name];
+    const double rate = a["rates"][name].get<double>();
+    EXPECT_LE(ci[0].get<double>(), rate) << name;
+    EXPECT_GE(ci[1].get<double>(), rate) << name;
+  }
+  EXPECT_EQ(total, 20);
+  ASSERT_EQ(a["journeys"].size(), 20U);
+  int direct = 0;
+  for (const auto& journey : a["journeys"]) {
+    EXPECT_NE(journey["from"], journey["to"]);
+    direct += journey["outcome"] == "success_direct" ? 1 : 0;
+  }
+  EXPECT_EQ(direct, a["outcomes"]["success_direct"].get<int>());
+  EXPECT_EQ(a["outcomes"].size(), 6U);
+  EXPECT_GT(a["frames"].get<int>(), 0);
+  EXPECT_EQ(run("2"), a);  // same seed, any thread count: the same journeys
+}
+
+TEST_F(NavCli, BadInputIsOneLineError) {
+  const std::string world = small_world();
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--from", "0", "--to", "9"}), "9"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--from", "1", "--to", "1"}), "same object"));
+  const auto unreachable = run_neopipe({"nav", "--world", world, "--from", "0", "--to", "3"});
+  EXPECT_EQ(unreachable.exit_code, 3);
+  EXPECT_TRUE(one_error_line(unreachable, "cannot be reached"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "0"}), "--trials 0"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world}), "--trials"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("missing.yaml"), "--trials", "2"}), "missing.yaml"));
+  write_text(file("bad.yaml"), "size: [200, 200]\nobjects: [[1, 2\n");
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("bad.yaml"), "--trials", "2"}), "bad.yaml"));
+  EXPECT_TRUE(one_error_line(
+      run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--plot", file("p.gif")}), "p.gif"));
+}
