@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "nav/mapmaker/view_agreement.hpp"
+
 namespace neopipe::nav::mapmaker {
 
 std::vector<ParkwayEdgeQuality> parkway_edge_qualities(const WorldViews& views, const NavigatorErrors& errors) {
@@ -13,8 +15,9 @@ std::vector<ParkwayEdgeQuality> parkway_edge_qualities(const WorldViews& views, 
       const Placement from{e.from, e.corner};
       const int visible = static_cast<int>(views.visible(from).size());
       const auto confusable = confusable_in_view(views, from, e.to, description);
-      out.push_back({e, description, selection_reliability(visible, errors.sigma, views.window().side),
-                     check_step(views, e.to, confusable).kind});
+      const double reliability = selection_reliability(visible, errors.sigma, views.window().side) *
+                                 view_agreement(views, from, description, errors.sigma);
+      out.push_back({e, description, reliability, check_step(views, e.to, confusable).kind});
     }
   };
   add(obvious_parkway(views), Description::Obvious);

@@ -16,7 +16,7 @@ namespace neopipe::nav::mapmaker {
 struct ParkwayEdgeQuality {
   ParkwayEdge edge;
   Description description = Description::Isol;
-  double reliability = 1;  ///< selection reliability of the landmark at `from`
+  double reliability = 1;  ///< the step's: selection reliability times view agreement at `from`
   Verifiability verifiability = Verifiability::trivial;
 
   /// A mistake would show in the landmark's QOC (or none is possible).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "nav/mapmaker/view_agreement.hpp"
+
 namespace neopipe::nav::mapmaker {
 
 double Step::unreliability() const {
@@ -19,7 +21,6 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
     const Eigen::Vector2d start = views.origin(from);
     const Eigen::Vector2d reference = views.position(from.object);
     const int visible = static_cast<int>(views.visible(from).size());
-    const double selection = selection_reliability(visible, errors.sigma, views.window().side);
     group.clear();
     const auto add = [&](Step s, const Eigen::Vector2d& found_at) {
       s.landmark_distance = (views.position(s.landmark) - reference).norm();
@@ -31,6 +32,8 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
     };
     const bool obvious = views.obvious(from).has_value();
     const Description seek = obvious ? Description::Obvious : Description::Isol;
+    const double selection = selection_reliability(visible, errors.sigma, views.window().side) *
+                             view_agreement(views, from, seek, errors.sigma);
     if (const auto landmark = views.landmark(from, seek)) {
       Step s;
       s.from = from;

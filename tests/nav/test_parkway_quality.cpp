@@ -7,6 +7,7 @@
 #include <random>
 
 #include "nav/mapmaker/parkway_quality.hpp"
+#include "nav/mapmaker/view_agreement.hpp"
 #include "tests/nav/uniform_world.hpp"
 
 namespace neopipe::nav::mapmaker {
@@ -86,7 +87,8 @@ TEST(ParkwayQuality, SubgraphsMatchTheirDefinitionsByBruteForce) {
           qoc_unique = false;
         }
       }
-      const double reliability = selection_reliability(static_cast<int>(visible.size()), errors.sigma, window.side);
+      const double reliability = selection_reliability(static_cast<int>(visible.size()), errors.sigma, window.side) *
+                                 view_agreement(views, {e.edge.from, e.edge.corner}, e.description, errors.sigma);
       EXPECT_DOUBLE_EQ(e.reliability, reliability);
       const auto& reliable = obvious ? q.reliable.obvious : q.reliable.isolated;
       const auto& detectable = obvious ? q.detectable.obvious : q.detectable.isolated;
