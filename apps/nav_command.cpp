@@ -63,8 +63,11 @@ Setup make_setup(const NavArgs& a) {
         fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
   }
   s.options.window = nav::WindowModel::with_side(a.window);
-  // The map-maker rates its steps with the error it really has: its own position error.
-  s.options.errors.sigma = a.sigma_map;
+  // The map-maker rates its steps with the errors the navigator really meets: the survey's position
+  // error and the navigator's own placement of its window, which holds a landmark only to within its
+  // adjust tolerance (taken as two sd). Without the second an exact survey makes every step look
+  // certain and the plan takes borderline ones (docs/navigation-experiments.md, sensor accuracy).
+  s.options.errors.sigma = std::hypot(a.sigma_map, nav::navigator::NavigatorConfig{}.adjust_tolerance / 2);
   s.options.errors.translation_per_mm = a.sigma_move;
   s.options.errors.rotation_per_mm = a.sigma_rot * std::numbers::pi / 180;
   s.settings.errors = {a.sigma_map, a.sigma_move, a.sigma_rot};
