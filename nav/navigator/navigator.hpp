@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -56,19 +57,19 @@ struct Sighting {
 };
 
 struct NavigatorConfig {
-  WindowModel window;                ///< side a and margin m, as the map-maker assumed
+  WindowModel window;  ///< side a and margin m, as the map-maker assumed
   CameraModel camera;
-  double adjust_tolerance = 0.4;     ///< mm: a landmark this close to its corner position is held
-  int max_adjust_moves = 8;          ///< servo iterations before the adjust counts as failed
-  double slide_step = 2;             ///< mm per move while sliding (below a marble radius: slide.cpp)
-  double max_slide = 2000;           ///< mm: a trajectory that meets nothing this far is lost
-  bool recovery = true;              ///< apply the map's recovery rules (off: the "no recovery" runs)
+  double adjust_tolerance = 0.4;  ///< mm: a landmark this close to its corner position is held
+  int max_adjust_moves = 8;       ///< servo iterations before the adjust counts as failed
+  double slide_step = 2;          ///< mm per move while sliding (below a marble radius: slide.cpp)
+  double max_slide = 2000;        ///< mm: a trajectory that meets nothing this far is lost
+  bool recovery = true;           ///< apply the map's recovery rules (off: the "no recovery" runs)
   /// What the navigator expects of its arm's unintended turns (sd per move: turn_sigma0 +
   /// turn_sigma_per_mm * length, rad) and of its own positions of whole marbles (sd, mm): it weighs
   /// the turn it measures from objects seen before and after each move by them.
-  double turn_sigma0 = 0.05 * 3.14159265358979 / 180;          // rad
-  double turn_sigma_per_mm = 0.002 * 3.14159265358979 / 180;  // rad per mm moved
-  double position_sigma = 0.015;                               // mm
+  double turn_sigma0 = 0.05 * std::numbers::pi / 180;         // rad
+  double turn_sigma_per_mm = 0.002 * std::numbers::pi / 180;  // rad per mm moved
+  double position_sigma = 0.015;                              // mm
   /// mm: objects this close to a window border, on either side, may have been in view or not for the
   /// map-maker (its positions have errors). When a view or a QOC measured as seen does not match the
   /// map, the navigator tries them on the other side before it gives up (seek.cpp, verify.cpp).
@@ -96,9 +97,9 @@ struct JourneyReport {
   Ending ending = Ending::arrived;
   std::string reason;  ///< for lost / unrecoverable: what could not be done, in the map's words
   std::vector<EntryRecord> entries;
-  int recoveries = 0;                ///< total recovery rules applied
-  std::int64_t frames = 0;           ///< onboard frames processed
-  double commanded_travel = 0;       ///< mm, sum of |commanded moves|
+  int recoveries = 0;           ///< total recovery rules applied
+  std::int64_t frames = 0;      ///< onboard frames processed
+  double commanded_travel = 0;  ///< mm, sum of |commanded moves|
 };
 
 /// Called by the navigator as it goes, so a harness can check each step against ground truth at the
