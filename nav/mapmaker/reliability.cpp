@@ -6,12 +6,10 @@
 #include <limits>
 #include <vector>
 
+#include "nav/mapmaker/normal.hpp"
+
 namespace neopipe::nav::mapmaker {
 namespace {
-
-double normal_cdf(double z) {
-  return 0.5 * std::erfc(-z / std::numbers::sqrt2);
-}
 
 // Beyond this many standard deviations a bound changes R by less than 3e-7: not worth a look.
 constexpr double kReach = 5.0;

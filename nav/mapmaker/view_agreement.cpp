@@ -5,15 +5,13 @@
 #include <numbers>
 #include <vector>
 
+#include "nav/mapmaker/normal.hpp"
+
 namespace neopipe::nav::mapmaker {
 namespace {
 
 // Beyond this many standard deviations from an edge a flip changes R by less than 3e-7.
 constexpr double kReach = 5.0;
-
-double normal_cdf(double z) {
-  return 0.5 * std::erfc(-z / std::numbers::sqrt2);
-}
 
 }  // namespace
 
