@@ -10,6 +10,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/map_plot.hpp"
 #include "apps/nav_harness.hpp"
+#include "apps/nav_survey.hpp"
 #include "apps/nav_trials.hpp"
 #include "apps/nav_video.hpp"
 #include "apps/progress.hpp"
@@ -40,8 +41,13 @@ std::string_view ending_name(nv::Ending e) {
   return "?";
 }
 
+// mm: how far the navigator may misjudge a marble cut by its image border (its centre from the cap)
+// and the turn it has not measured, at the far side of its window.
+constexpr double kNavigatorBorderError = 0.25;
+
 struct Setup {
   sim::World world;
+  Survey survey;
   mm::MapMakerOptions options;
   JourneySettings settings;
 };
@@ -49,7 +55,7 @@ struct Setup {
 Setup make_setup(const NavArgs& a) {
   if (!(a.window > 0) || !std::isfinite(a.window))
     throw UsageError{fmt::format("--window {}: must be > 0 mm", a.window)};
-  check_non_negative("--sigma-map", a.sigma_map, "mm");
+  if (a.sigma_map) check_non_negative("--sigma-map", *a.sigma_map, "mm");
   check_non_negative("--sigma-move", a.sigma_move, "mm per mm");
   check_non_negative("--sigma-rot", a.sigma_rot, "degrees per mm");
   Setup s;
@@ -62,19 +68,44 @@ Setup make_setup(const NavArgs& a) {
     throw mm::MapError(
         fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
   }
+  s.survey = a.sigma_map ? gaussian_survey(s.world, *a.sigma_map, a.seed) : global_camera_survey(s.world, a.seed);
   s.options.window = nav::WindowModel::with_side(a.window);
   // The map-maker rates its steps with the errors the navigator really meets: the survey's position
-  // error and the navigator's own placement of its window, which holds a landmark only to within its
-  // adjust tolerance (taken as two sd). Without the second an exact survey makes every step look
-  // certain and the plan takes borderline ones (docs/navigation-experiments.md, sensor accuracy).
-  s.options.errors.sigma = std::hypot(a.sigma_map, nav::navigator::NavigatorConfig{}.adjust_tolerance / 2);
+  // error (as the calibration states it, not as the truth would) and the navigator's own placement
+  // of its window, which holds a landmark only to within its adjust tolerance (taken as two sd).
+  // Without the second an exact survey makes every step look certain and the plan takes borderline
+  // ones (docs/navigation-experiments.md, sensor accuracy).
+  s.options.errors.sigma = std::hypot(s.survey.sigma, nav::navigator::NavigatorConfig{}.adjust_tolerance / 2);
+  // Where the survey and the world may disagree about which side of a border an object lies: 3 sd
+  // of two objects' relative survey error, plus the navigator's own error on marbles the image border
+  // cuts. The map-maker keeps its verification and recovery rules clear of that band; the navigator
+  // uses the same band to explain a QOC or a view that differs from the map's.
+  const double border_band = 3 * std::sqrt(2.0) * s.survey.sigma + kNavigatorBorderError;
+  s.options.border_tolerance = border_band;
+  s.settings.navigator.view_margin = border_band;
   s.options.errors.translation_per_mm = a.sigma_move;
   s.options.errors.rotation_per_mm = a.sigma_rot * std::numbers::pi / 180;
-  s.settings.errors = {a.sigma_map, a.sigma_move, a.sigma_rot};
+  s.settings.errors = {a.sigma_move, a.sigma_rot};
   s.settings.navigator.window = s.options.window;
   s.settings.navigator.recovery = !a.no_recovery;
   s.settings.seed = a.seed;
   return s;
+}
+
+json survey_json(const Survey& s) {
+  return {{"method", s.method}, {"sigma", s.sigma}, {"rms_error", s.rms_error}, {"max_error", s.max_error}};
+}
+
+std::string survey_line(const Survey& s) {
+  return fmt::format(
+      "survey: {}, position sd {:.4f} mm as the map-maker is told; against the truth RMS {:.4f} mm, max {:.4f} mm",
+      s.method == "global_camera" ? "global camera + calibration" : "Gaussian error", s.sigma, s.rms_error,
+      s.max_error);
+}
+
+// "TRAJP 47 -> 75": the step a journey first went wrong at, for grouping failures by kind.
+std::string step_name(const mm::RouteStep& step) {
+  return fmt::format("{} {} -> {}", mm::step_description(step.step), step.step.from.object, step.step.landmark);
 }
 
 json held_json(const JourneyResult& r, std::size_t entry) {
@@ -121,6 +152,7 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
               {"commanded_travel", r.commanded_travel},
               {"arm_travel", r.true_travel},
               {"refused_moves", r.refused_moves},
+              {"survey", survey_json(s.survey)},
               {"seed", a.seed}};
     json list = json::array();
     for (std::size_t e = 0; e < entries.size(); ++e) {
@@ -137,7 +169,8 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
     j["entries"] = list;
     std::cout << j.dump() << '\n';
   } else {
-    std::cout << fmt::format("route {} -> {} by {}:\n", route.start, route.goal, mm::criterion_name(route.criterion))
+    std::cout << survey_line(s.survey) << '\n'
+              << fmt::format("route {} -> {} by {}:\n", route.start, route.goal, mm::criterion_name(route.criterion))
               << mm::route_table(route) << "custom map:\n"
               << nav::format_custom_map(route.custom_map) << "\n\n"
               << fmt::format("{:>5}  {:<40} {:>8} {:>6} {:>7} {:>8} {:>4} {:>5} {:>6}\n", "ENTRY", "MAP", "INTENDED",
@@ -190,6 +223,12 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
   const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
   const double mean_travel = t.true_travel / static_cast<double>(n);
   const double mean_commanded = t.commanded_travel / static_cast<double>(n);
+  double mean_planned = 0;
+  double mean_planned_distance = 0;
+  for (const mm::Route& r : routes) {
+    mean_planned += std::exp(-r.unreliability) / static_cast<double>(n);
+    mean_planned_distance += r.distance / static_cast<double>(n);
+  }
   if (a.json) {
     json outcomes;
     json rates;
@@ -205,10 +244,17 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
     // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
     // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
     json journeys = json::array();
-    for (const TrialRecord& r : t.trials) {
+    for (std::size_t i = 0; i < t.trials.size(); ++i) {
+      const TrialRecord& r = t.trials[i];
       journeys.push_back({{"from", r.from},
                           {"to", r.to},
+                          {"planned_reliability", std::exp(-routes[i].unreliability)},
                           {"outcome", outcome_name(r.outcome)},
+                          {"reason", r.reason},
+                          {"first_wrong_entry", r.first_wrong_entry ? json(*r.first_wrong_entry) : json(nullptr)},
+                          {"first_wrong_step", r.first_wrong_entry && *r.first_wrong_entry > 0
+                                                   ? json(step_name(routes[i].steps.at(*r.first_wrong_entry - 1)))
+                                                   : json(nullptr)},
                           {"recoveries", r.recoveries},
                           {"frames", r.frames},
                           {"arm_travel", r.true_travel}});
@@ -226,7 +272,10 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
                     {"mean_arm_travel", mean_travel},
                     {"mean_commanded_travel", mean_commanded},
                     {"cost", a.cost},
-                    {"sigma_map", a.sigma_map},
+                    {"survey", survey_json(s.survey)},
+                    {"sigma_map", s.survey.sigma},
+                    {"mean_planned_reliability", mean_planned},
+                    {"mean_planned_distance", mean_planned_distance},
                     {"sigma_move", a.sigma_move},
                     {"sigma_rot", a.sigma_rot},
                     {"window", a.window},
@@ -237,10 +286,10 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
     return kExitOk;
   }
   std::cout << fmt::format(
-      "{} journeys on {} ({} objects), cost {}, sigma map {} mm, move {} /mm, rotation {} deg/mm, recovery {}, "
-      "seed {}\n\n{:<20} {:>7} {:>8}  {}\n",
-      n, a.world, s.world.objects.size(), a.cost, a.sigma_map, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on",
-      a.seed, "OUTCOME", "COUNT", "RATE", "95% CI");
+      "{} journeys on {} ({} objects), cost {}, move {} /mm, rotation {} deg/mm, recovery {}, seed {}\n{}\n\n"
+      "{:<20} {:>7} {:>8}  {}\n",
+      n, a.world, s.world.objects.size(), a.cost, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on", a.seed,
+      survey_line(s.survey), "OUTCOME", "COUNT", "RATE", "95% CI");
   const auto row = [&](std::string_view name, std::int64_t count) {
     const Interval w = wilson_interval(count, n);
     std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,
@@ -249,8 +298,9 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
   for (const Outcome o : kOutcomes) row(outcome_name(o), t.count(o));
   row("reached the goal", t.reached());
   std::cout << fmt::format(
-      "\nframes {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n", t.frames,
-      t.seconds, fps, mean_travel, mean_commanded);
+      "\nplanned: mean D {:.1f} mm; the map-maker expected {:.2f}% of the journeys to follow their plan (mean R)\n"
+      "frames {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n",
+      mean_planned_distance, 100 * mean_planned, t.frames, t.seconds, fps, mean_travel, mean_commanded);
   return kExitOk;
 }
 
@@ -262,10 +312,14 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
-  cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
+  cmd->add_option("--cost", a.cost,
+                  "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R, the paper's "
+                  "compromise)")
       ->capture_default_str()
       ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
-  cmd->add_option("--sigma-map", a.sigma_map, "Map-maker's position error, sd mm per axis")->capture_default_str();
+  cmd->add_option("--sigma-map", a.sigma_map,
+                  "Survey by moving each object N(0, S) mm per axis instead of through the global camera and its "
+                  "calibration (the default)");
   cmd->add_option("--sigma-move", a.sigma_move, "Arm's translation error, sd mm per mm moved")->capture_default_str();
   cmd->add_option("--sigma-rot", a.sigma_rot, "Arm's heading error, sd degrees per mm moved")->capture_default_str();
   cmd->add_option("--seed", a.seed, "Seed of the map-maker's errors, the start/goal draws, arm errors, camera noise")
@@ -292,7 +346,7 @@ int nav_command(const NavArgs& a) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }
   const Setup s = make_setup(a);
-  const mm::MapMaker maker(surveyed_workspace(s.world, a.sigma_map, a.seed), s.options);
+  const mm::MapMaker maker(s.survey.workspace, s.options);
   return a.trials ? trials(a, s, maker) : one_journey(a, s, maker);
 }
 

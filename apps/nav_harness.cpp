@@ -16,13 +16,6 @@ namespace {
 using Eigen::Vector2d;
 namespace nv = nav::navigator;
 
-// Two independent streams from one journey seed: changing how many normals the arm draws must not
-// shift the camera noise, and the reverse.
-std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
-  sim::Random r(seed ^ (0x9E3779B97F4A7C15ULL * (stream + 1)));
-  return r.next();
-}
-
 // The navigator's only way to move: relative commands, which the simulated arm executes with its
 // errors. A command the arm cannot reach leaves it where it was (as a real arm stopping at its
 // limit would), so the navigator finds out by looking, not by an exception.
@@ -131,16 +124,9 @@ sim::MotionErrors motion_errors(const ExperimentErrors& e) {
   return m;
 }
 
-nav::mapmaker::Workspace surveyed_workspace(const sim::World& world, double sigma_map, std::uint64_t seed) {
-  nav::mapmaker::Workspace w{world.size, {}};
-  w.objects.reserve(world.objects.size());
-  sim::Random random(stream_seed(seed, 100));
-  for (const Vector2d& p : world.objects) {
-    const double x = random.normal(p.x(), sigma_map);
-    const double y = random.normal(p.y(), sigma_map);
-    w.objects.emplace_back(std::clamp(x, 0.0, world.size.x()), std::clamp(y, 0.0, world.size.y()));
-  }
-  return w;
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream) {
+  sim::Random r(seed ^ (0x9E3779B97F4A7C15ULL * (stream + 1)));
+  return r.next();
 }
 
 sim::ScaraGeometry arm_for_world(const sim::World& world, double window_side) {

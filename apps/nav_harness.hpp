@@ -21,7 +21,6 @@ namespace neopipe::apps {
 
 /// The experiment's error settings, as the command line gives them.
 struct ExperimentErrors {
-  double sigma_map = 1.0;     ///< sd per axis of the map-maker's object positions, mm
   double sigma_move = 0.003;  ///< sd of the arm's translation (along and across) per mm moved
   double sigma_rot = 0.002;   ///< sd of the arm's heading, degrees per mm moved
 };
@@ -30,9 +29,9 @@ struct ExperimentErrors {
 /// repeatability floor either), so that error-free runs can be asked for.
 sim::MotionErrors motion_errors(const ExperimentErrors& errors);
 
-/// The map-maker's view of the world: every object moved by N(0, sigma_map) per axis (seeded), kept
-/// on the workspace. Object ids are unchanged.
-nav::mapmaker::Workspace surveyed_workspace(const sim::World& world, double sigma_map, std::uint64_t seed);
+/// Independent random streams from one seed: changing how many numbers one consumer draws (the
+/// arm's normals, say) must not shift another's (the camera noise).
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream);
 
 /// A SCARA arm that can hold a window anywhere over the world and one window beyond its edges, so
 /// a trajectory may slide off the world without hitting the arm's reach first.

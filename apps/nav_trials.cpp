@@ -5,6 +5,7 @@
 #include <oneapi/tbb/parallel_for.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -59,21 +60,25 @@ TrialsSummary run_trials(const sim::World& world, const std::vector<mm::Route>& 
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
   arena.execute([&] {
     // One journey per task: journeys last thousands of frames, so scheduling costs nothing.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, routes.size(), 1),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          JourneySettings s = settings;
-                          s.seed = trial_seed(settings.seed, static_cast<std::int64_t>(i));
-                          const JourneyResult r = run_journey(world, routes[i], s);
-                          summary.trials[i] = {routes[i].start, routes[i].goal,     r.outcome,    r.report.recoveries,
-                                               r.frames,        r.commanded_travel, r.true_travel};
-                          ++done;
-                          if (progress) {
-                            const std::scoped_lock lock(progress_mutex);
-                            progress(done.load());  // read under the lock: the bar never goes backwards
-                          }
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, routes.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            JourneySettings s = settings;
+            s.seed = trial_seed(settings.seed, static_cast<std::int64_t>(i));
+            const JourneyResult r = run_journey(world, routes[i], s);
+            TrialRecord& t = summary.trials[i];
+            t = {routes[i].start,    routes[i].goal, r.outcome,       r.report.recoveries, r.frames,
+                 r.commanded_travel, r.true_travel,  r.report.reason, std::nullopt};
+            const auto wrong =
+                std::find_if(r.held.begin(), r.held.end(), [](const HeldLandmark& h) { return !h.correct; });
+            if (wrong != r.held.end()) t.first_wrong_entry = wrong->entry;
+            ++done;
+            if (progress) {
+              const std::scoped_lock lock(progress_mutex);
+              progress(done.load());  // read under the lock: the bar never goes backwards
+            }
+          }
+        });
   });
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Sums in trial order, so the totals do not depend on which thread finished first.

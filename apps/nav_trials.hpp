@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "apps/nav_harness.hpp"
@@ -31,6 +33,8 @@ struct TrialRecord {
   std::int64_t frames = 0;
   double commanded_travel = 0;
   double true_travel = 0;
+  std::string reason;                            ///< the navigator's, when it stopped aware of a failure
+  std::optional<std::size_t> first_wrong_entry;  ///< the first custom-map entry that held a wrong object
 };
 
 struct TrialsSummary {

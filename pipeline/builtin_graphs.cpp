@@ -20,4 +20,14 @@ GraphSpec blob_graph(const BlobGraphOptions& o) {
   return b.spec();
 }
 
+GraphSpec marble_graph(int workspace_level) {
+  GraphBuilder b("<built-in marble graph>");
+  b.node("src", "source", "{format: gray}");
+  b.node("excess", "lut", "{expr: \"a - " + std::to_string(workspace_level) + "\"}");
+  b.node("blobs", "blobs", "{threshold: 0, connectivity: 8}");
+  b.connect("src", "excess.in").connect("excess", "blobs.in").connect("excess", "blobs.weights");
+  b.output("blobs");
+  return b.spec();
+}
+
 }  // namespace neopipe::pipeline

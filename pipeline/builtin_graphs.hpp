@@ -19,4 +19,9 @@ struct BlobGraphOptions {
 /// `neopipe run` uses a gray8 source unless it annotates (apps/run_command.cpp).
 GraphSpec blob_graph(const BlobGraphOptions& options = {});
 
+/// Bright marbles on a dark workspace to a small fraction of a pixel: gray8 source -> excess =
+/// gray - `workspace_level` (saturating) -> 8-connected blobs of excess > 0, weighted by the excess,
+/// so the rim pixels the cut leaves weigh almost nothing. examples/marbles.yaml is the same graph.
+GraphSpec marble_graph(int workspace_level = 60);
+
 }  // namespace neopipe::pipeline

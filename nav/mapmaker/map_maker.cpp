@@ -79,7 +79,7 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     } else {
       confusable = confusable_in_view(views_, s.from, s.landmark, s.seek);
     }
-    rs.check = check_step(views_, s.landmark, confusable);
+    rs.check = check_step(views_, s.landmark, confusable, options_.border_tolerance);
     rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust)};
     route.landmark_distance += s.landmark_distance;
     route.custom_map.entries.push_back(rs.entry);
@@ -88,13 +88,17 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
   return route;
 }
 
+std::string_view step_description(const Step& s) {
+  if (s.slide) return *s.slide == Direction::positive ? "TRAJP" : "TRAJN";
+  return s.seek == Description::Obvious ? "OBVIOUS" : "ISOL";
+}
+
 std::string route_table(const Route& route) {
   std::string out = fmt::format("{:>6} {:>6} {:<7} {:>9} {:>8} {:>9}  {}\n", "FROM", "TO", "DESC", "DISTANCE", "UNPROB",
                                 "COST", "VERIFICATION");
   for (const RouteStep& rs : route.steps) {
     const Step& s = rs.step;
-    const std::string desc = s.slide ? (*s.slide == Direction::positive ? "TRAJP" : "TRAJN")
-                                     : (s.seek == Description::Obvious ? "OBVIOUS" : "ISOL");
+    const std::string_view desc = step_description(s);
     const double u = s.unreliability();
     double cost = rs.distance;
     if (route.criterion == CostCriterion::reliability) cost = u;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nav/common/custom_map.hpp"
@@ -21,6 +22,10 @@ namespace neopipe::nav::mapmaker {
 struct MapMakerOptions {
   WindowModel window;
   NavigatorErrors errors;
+  /// mm: an object this close to a quadrant's border may lie on either side for the navigator (the
+  /// survey's and the navigator's position errors). Verification and recovery rules then hold
+  /// whichever side it falls (check_step). 0: the map-maker's positions are taken as exact.
+  double border_tolerance = 0;
 };
 
 struct RouteStep {
@@ -71,6 +76,9 @@ class MapMaker {
   WorldViews views_;
   StepTable steps_;
 };
+
+/// A step's kind as the route table names it: TRAJP, TRAJN, OBVIOUS or ISOL.
+std::string_view step_description(const Step& step);
 
 /// The human table of a route, like the paper's Fig. 30: from, to, description, distance,
 /// unreliability, cost, and the verification/recovery line of each step.

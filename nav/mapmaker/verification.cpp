@@ -52,35 +52,56 @@ std::vector<std::uint32_t> confusable_on_trajectory(const WorldViews& views, con
 
 namespace {
 
-// Where the rule table takes the navigator from `at`: true when it ends on `landmark`.
-bool leads_back(const WorldViews& views, std::uint32_t landmark, int landmark_qoc, std::uint32_t at,
-                const std::map<int, Corner>& rules) {
-  for (int hop = 0; hop < 8; ++hop) {
-    if (at == landmark) return true;
-    const int q = views.qoc(at);
-    if (q == landmark_qoc) return false;  // would pass verification at the wrong place
-    const auto rule = rules.find(q);
-    if (rule == rules.end()) return false;
-    const auto next = views.isolated({at, rule->second});
-    if (!next) return false;
-    at = *next;
+// What the navigator may measure at each object: a QOC anywhere in the object's range.
+class QocRanges {
+ public:
+  QocRanges(const WorldViews& views, double tolerance) : views_(views), tolerance_(tolerance) {}
+  QocRange operator()(std::uint32_t id) const { return views_.qoc_range(id, tolerance_); }
+
+ private:
+  const WorldViews& views_;
+  double tolerance_;
+};
+
+// Whether the rule table takes the navigator from `at`, where it measured `measured`, to `landmark`
+// whatever it measures at the objects it passes (every QOC in their ranges), within `hops` rules.
+bool leads_back(const WorldViews& views, const QocRanges& ranges, std::uint32_t landmark, const QocRange& mine,
+                std::uint32_t at, int measured, const std::map<int, Corner>& rules, int hops = 8) {
+  if (at == landmark) return true;
+  if (hops == 0) return false;
+  const auto rule = rules.find(measured);
+  if (rule == rules.end()) return false;
+  const auto next = views.isolated({at, rule->second});
+  if (!next) return false;
+  if (*next == landmark) return true;
+  const QocRange there = ranges(*next);
+  if (there.overlaps(mine)) return false;  // would pass verification at the wrong place
+  for (int q = there.low; q <= there.high; ++q) {
+    if (!leads_back(views, ranges, landmark, mine, *next, q, rules, hops - 1)) return false;
   }
-  return false;
+  return true;
 }
 
 }  // namespace
 
-StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<const std::uint32_t> confusable) {
+StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<const std::uint32_t> confusable,
+                     double tolerance) {
   StepCheck check;
   check.qoc = views.qoc(landmark);
   check.confusable.assign(confusable.begin(), confusable.end());
   std::sort(check.confusable.begin(), check.confusable.end());
   if (check.confusable.empty()) return check;  // trivial
+  const QocRanges ranges(views, tolerance);
+  const QocRange mine = ranges(landmark);
+  // Every QOC a mistaken object may show, with the objects that may show it.
   std::map<int, std::vector<std::uint32_t>> by_qoc;
-  for (const std::uint32_t id : check.confusable) by_qoc[views.qoc(id)].push_back(id);
-  if (by_qoc.count(check.qoc)) {
-    check.kind = Verifiability::unverifiable;
-    return check;
+  for (const std::uint32_t id : check.confusable) {
+    const QocRange r = ranges(id);
+    if (r.overlaps(mine)) {
+      check.kind = Verifiability::unverifiable;
+      return check;
+    }
+    for (int q = r.low; q <= r.high; ++q) by_qoc[q].push_back(id);
   }
   // One rule per QOC value. Rules that take their objects straight back are found first; a second
   // and third pass allow chains through rules already chosen (paper: C -> B -> I).
@@ -92,7 +113,7 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
         std::map<int, Corner> trial = rules;
         trial[q] = c;
         const bool all = std::all_of(objects.begin(), objects.end(), [&](std::uint32_t id) {
-          return leads_back(views, landmark, check.qoc, id, trial);
+          return leads_back(views, ranges, landmark, mine, id, q, trial);
         });
         if (all) {
           rules = std::move(trial);
@@ -101,10 +122,12 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
       }
     }
   }
-  const bool correctable = rules.size() == by_qoc.size() &&
-                           std::all_of(check.confusable.begin(), check.confusable.end(), [&](std::uint32_t id) {
-                             return leads_back(views, landmark, check.qoc, id, rules);
-                           });
+  const bool correctable =
+      rules.size() == by_qoc.size() && std::all_of(by_qoc.begin(), by_qoc.end(), [&](const auto& e) {
+        return std::all_of(e.second.begin(), e.second.end(), [&](std::uint32_t id) {
+          return leads_back(views, ranges, landmark, mine, id, e.first, rules);
+        });
+      });
   check.kind = correctable ? Verifiability::correctable : Verifiability::not_correctable;
   if (correctable) {
     for (const auto& [q, c] : rules) check.rules.push_back({q, c, Description::Isol});

@@ -46,8 +46,12 @@ std::vector<std::uint32_t> confusable_on_trajectory(const WorldViews& views, con
 
 /// Whether reaching `landmark` can be verified, and the recovery rules: for each QOC value among the
 /// confusable objects, a (corner, Isol) that takes every object with that QOC to the landmark,
-/// directly or through other rules (paper §6.3.2, conditions 1-3).
-StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<const std::uint32_t> confusable);
+/// directly or through other rules (paper §6.3.2, conditions 1-3). With a `tolerance` (mm) every
+/// object may show any QOC of its views.qoc_range: a step is detectable only when no mistake's range
+/// meets the landmark's, and the rules must cover every QOC a mistake may show. So no rule ever names
+/// a QOC the landmark itself may show when an object lies that close to one of its quadrants' borders.
+StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<const std::uint32_t> confusable,
+                     double tolerance = 0);
 
 /// What the map's table prints for a step: "VERIFY QOC -> 2 (CORRECTABLE)" and its rules.
 std::string verification_line(const StepCheck& check);

@@ -68,6 +68,31 @@ int WorldViews::qoc(std::uint32_t object) const {
   return static_cast<int>(std::count(q.begin(), q.end(), true));
 }
 
+QocRange WorldViews::qoc_range(std::uint32_t object, double tolerance) const {
+  if (tolerance <= 0) {
+    const int q = qoc(object);
+    return {q, q};
+  }
+  QocRange r;
+  const Eigen::Vector2d t(tolerance, tolerance);
+  for (const Corner held : kCorners) {
+    const Eigen::Vector2d lo = origin({object, held});
+    const Eigen::Vector2d hi = lo + Eigen::Vector2d(window_.side, window_.side);
+    bool surely = false;
+    bool maybe = false;
+    grid_.for_each_near(lo - t, hi + t, [&](std::uint32_t id) {
+      if (id == object) return;
+      const Eigen::Vector2d& p = position(id);
+      const double depth = std::min({p.x() - lo.x(), p.y() - lo.y(), hi.x() - p.x(), hi.y() - p.y()});
+      surely = surely || depth > tolerance;
+      maybe = maybe || depth > -tolerance;
+    });
+    r.low += surely;
+    r.high += maybe;
+  }
+  return r;
+}
+
 GatheredView gather(const WorldViews& views, const Placement& p) {
   GatheredView g;
   const std::span<const std::uint32_t> ids = views.visible(p);

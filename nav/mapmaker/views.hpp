@@ -28,6 +28,13 @@ struct Placement {
   friend bool operator==(const Placement&, const Placement&) = default;
 };
 
+struct QocRange {
+  int low = 0;
+  int high = 0;
+  bool contains(int q) const { return low <= q && q <= high; }
+  bool overlaps(const QocRange& o) const { return low <= o.high && o.low <= high; }
+};
+
 class WorldViews {
  public:
   WorldViews(const Workspace& workspace, const WindowModel& window);
@@ -54,6 +61,10 @@ class WorldViews {
   std::array<bool, 4> quadrants(std::uint32_t object) const;
   /// QOC: the number of occupied quadrants, 0..4.
   int qoc(std::uint32_t object) const;
+  /// The QOCs a navigator could measure when positions may be off by up to `tolerance` mm across a
+  /// window border: low counts the quadrants with an object deeper than that inside, high those with
+  /// an object anywhere within that of the window. low <= qoc <= high; both are qoc at tolerance 0.
+  QocRange qoc_range(std::uint32_t object, double tolerance) const;
 
  private:
   const Workspace* workspace_;

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "apps/nav_harness.hpp"
+#include "apps/nav_survey.hpp"
 #include "apps/nav_trials.hpp"
 #include "sim/arm/scara.hpp"
+#include "sim/world.hpp"
 
 namespace {
 namespace apps = neopipe::apps;
@@ -29,18 +31,45 @@ mm::MapMakerOptions options(double sigma) {
 
 apps::JourneySettings exact_settings() {
   apps::JourneySettings s;
-  s.errors = {0, 0, 0};
+  s.errors = {0, 0};
   s.navigator.window = neopipe::nav::WindowModel::with_side(50);
   return s;
 }
 
 TEST(NavHarness, SurveyIsExactAtZeroSigmaAndSeededOtherwise) {
   const auto world = small_world();
-  EXPECT_EQ(apps::surveyed_workspace(world, 0, 3).objects, world.objects);
-  const auto a = apps::surveyed_workspace(world, 1, 3);
-  EXPECT_EQ(apps::surveyed_workspace(world, 1, 3).objects, a.objects);
-  EXPECT_NE(apps::surveyed_workspace(world, 1, 4).objects, a.objects);
+  EXPECT_EQ(apps::gaussian_survey(world, 0, 3).workspace.objects, world.objects);
+  const auto a = apps::gaussian_survey(world, 1, 3).workspace;
+  EXPECT_EQ(apps::gaussian_survey(world, 1, 3).workspace.objects, a.objects);
+  EXPECT_NE(apps::gaussian_survey(world, 1, 4).workspace.objects, a.objects);
   for (std::size_t i = 0; i < a.objects.size(); ++i) EXPECT_LT((a.objects[i] - world.objects[i]).norm(), 6.0);
+  EXPECT_GT(apps::gaussian_survey(world, 1, 3).rms_error, 0);
+}
+
+// The rig's survey (global camera, engine, calibration) finds every marble of a default world under
+// its own id, to the calibration's accuracy (docs/calibration.md: sd 0.005 mm per axis), and says
+// how good it is from the calibration alone.
+TEST(NavHarness, GlobalCameraSurveyFindsEveryMarbleToHundredthsOfAMillimetre) {
+  neopipe::sim::WorldRequest q;
+  q.objects = 100;
+  q.seed = 1;
+  const auto world = neopipe::sim::generate_world(q);
+  const apps::Survey s = apps::global_camera_survey(world, 7);
+  EXPECT_EQ(s.method, "global_camera");
+  ASSERT_EQ(s.workspace.objects.size(), world.objects.size());
+  EXPECT_LT(s.rms_error, 0.03);
+  EXPECT_LT(s.max_error, 0.1);
+  EXPECT_GT(s.rms_error, 0);  // a real measurement, not the truth handed over
+  EXPECT_GT(s.sigma, 0);
+  EXPECT_LT(s.sigma, 0.03);
+  EXPECT_EQ(apps::global_camera_survey(world, 7).workspace.objects, s.workspace.objects);
+}
+
+TEST(NavHarness, GlobalCameraSurveyRefusesMarblesItCannotTellApart) {
+  neopipe::sim::World w;
+  w.size = {500, 500};
+  w.objects = {{100, 100}, {105, 100}, {300, 300}};  // the first two touch
+  EXPECT_THROW(apps::global_camera_survey(w, 1), mm::MapError);
 }
 
 TEST(NavHarness, ArmReachesOneWindowBeyondTheWorld) {
@@ -54,7 +83,7 @@ TEST(NavHarness, ArmReachesOneWindowBeyondTheWorld) {
 
 TEST(NavHarness, ErrorFreeJourneyIsADirectSuccessAndTheTruthIsChecked) {
   const auto world = small_world();
-  const mm::MapMaker maker(apps::surveyed_workspace(world, 0, 1), options(0));
+  const mm::MapMaker maker(apps::gaussian_survey(world, 0, 1).workspace, options(0));
   mm::Route route = maker.plan(0, 2, mm::CostCriterion::ratio);
   const apps::JourneyResult r = apps::run_journey(world, route, exact_settings());
   EXPECT_EQ(r.outcome, apps::Outcome::success_direct) << r.report.reason;
@@ -74,7 +103,7 @@ TEST(NavHarness, ErrorFreeJourneyIsADirectSuccessAndTheTruthIsChecked) {
 
 TEST(NavHarness, TrialsRepeatBySeedForAnyThreadCount) {
   const auto world = small_world();
-  const mm::MapMaker maker(apps::surveyed_workspace(world, 0.5, 2), options(0.5));
+  const mm::MapMaker maker(apps::gaussian_survey(world, 0.5, 2).workspace, options(0.5));
   const auto routes = apps::draw_routes(maker, mm::CostCriterion::ratio, 6, 11);
   ASSERT_EQ(routes.size(), 6U);
   for (const mm::Route& r : routes) {
@@ -83,7 +112,7 @@ TEST(NavHarness, TrialsRepeatBySeedForAnyThreadCount) {
     EXPECT_NE(r.goal, 3U);
   }
   apps::JourneySettings s = exact_settings();
-  s.errors = {0.5, 0.003, 0.002};
+  s.errors = {0.003, 0.002};
   s.seed = 5;
   const auto one = apps::run_trials(world, routes, s, 1);
   const auto two = apps::run_trials(world, routes, s, 2);
@@ -101,7 +130,7 @@ TEST(NavHarness, TrialsRepeatBySeedForAnyThreadCount) {
   neopipe::sim::World apart;
   apart.size = {200, 200};
   apart.objects = {{20, 20}, {180, 180}};
-  const mm::MapMaker lonely(apps::surveyed_workspace(apart, 0, 1), options(0));
+  const mm::MapMaker lonely(apps::gaussian_survey(apart, 0, 1).workspace, options(0));
   EXPECT_THROW(apps::draw_routes(lonely, mm::CostCriterion::ratio, 1, 1), mm::MapError);
 }
 

@@ -64,6 +64,8 @@ TEST_F(NavCli, OneErrorFreeJourneyOnASmallWorldSucceeds) {
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("custom map:"), std::string::npos);
   EXPECT_NE(text.out.find("outcome: "), std::string::npos);
+  // Without --sigma-map the map-maker's survey goes through the rig: global camera, engine, calibration.
+  EXPECT_NE(text.out.find("survey: global camera + calibration"), std::string::npos);
 }
 
 TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
@@ -98,7 +100,13 @@ TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
   EXPECT_EQ(direct, a["outcomes"]["success_direct"].get<int>());
   EXPECT_EQ(a["outcomes"].size(), 6U);
   EXPECT_GT(a["frames"].get<int>(), 0);
-  EXPECT_EQ(run("2"), a);  // same seed, any thread count: the same journeys
+  EXPECT_EQ(a["survey"]["method"], "global_camera");
+  EXPECT_GT(a["survey"]["sigma"].get<double>(), 0);
+  EXPECT_LT(a["survey"]["rms_error"].get<double>(), 0.05);
+  EXPECT_GT(a["mean_planned_reliability"].get<double>(), 0.5);
+  EXPECT_LE(a["mean_planned_reliability"].get<double>(), 1.0);
+  EXPECT_EQ(a["cost"], "reliability");  // the default: a journey's job is to arrive
+  EXPECT_EQ(run("2"), a);               // same seed, any thread count: the same journeys
 }
 
 TEST_F(NavCli, BadInputIsOneLineError) {
@@ -109,6 +117,10 @@ TEST_F(NavCli, BadInputIsOneLineError) {
   EXPECT_EQ(unreachable.exit_code, 3);
   EXPECT_TRUE(one_error_line(unreachable, "cannot be reached"));
   EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "0"}), "--trials 0"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--sigma-map", "-1"}), "-1"));
+  // Two touching marbles are one blob to the global camera: the survey says so instead of guessing.
+  write_text(file("touching.yaml"), "size: [200, 200]\nobjects:\n  - [100, 100]\n  - [105, 100]\n  - [40, 40]\n");
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("touching.yaml"), "--trials", "2"}), "global camera"));
   EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world}), "--trials"));
   EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("missing.yaml"), "--trials", "2"}), "missing.yaml"));
   write_text(file("bad.yaml"), "size: [200, 200]\nobjects: [[1, 2\n");

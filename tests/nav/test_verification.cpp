@@ -136,5 +136,83 @@ TEST(Verification, RecoveryRulesAlwaysLeadBackWhenCorrectable) {
   EXPECT_GT(correctable, 50);
 }
 
+TEST(Verification, QocRangeHoldsWhateverSideABorderlineObjectFalls) {
+  // L at (100, 100); with a 50 mm window inset 2.5 mm, held at SW the view spans x, y in [97.5, 147.5].
+  // A neighbour 0.05 mm inside its north border makes L's NE quadrant occupied only just.
+  const Workspace w{{300, 300}, {{100, 100}, {120, 147.45}}};
+  const WorldViews views(w, WindowModel::with_side(50));
+  EXPECT_EQ(views.qoc(0), 1);
+  EXPECT_EQ(views.qoc_range(0, 0).low, 1);
+  EXPECT_EQ(views.qoc_range(0, 0).high, 1);
+  EXPECT_EQ(views.qoc_range(0, 0.1).low, 0);
+  EXPECT_EQ(views.qoc_range(0, 0.1).high, 1);
+  EXPECT_EQ(views.qoc_range(0, 0.01).low, 1);
+
+  // On random worlds: moving every object by less than half the tolerance per axis keeps every
+  // object's QOC inside the range computed on the unmoved world.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0, 200);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  int widened = 0;
+  for (int world = 0; world < 10; ++world) {
+    Workspace a{{200, 200}, {}};
+    for (int i = 0; i < 60; ++i) a.objects.emplace_back(u(rng), u(rng));
+    Workspace b = a;
+    for (auto& p : b.objects) p += Eigen::Vector2d(jitter(rng), jitter(rng));
+    const WorldViews va(a, WindowModel::with_side(50));
+    const WorldViews vb(b, WindowModel::with_side(50));
+    for (std::uint32_t id = 0; id < a.objects.size(); ++id) {
+      const QocRange r = va.qoc_range(id, 0.45);
+      ASSERT_TRUE(r.contains(vb.qoc(id))) << "object " << id;
+      ASSERT_TRUE(r.contains(va.qoc(id)));
+      widened += r.high > r.low;
+    }
+  }
+  EXPECT_GT(widened, 5);  // the worlds do have borderline objects
+}
+
+TEST(Verification, WithABorderToleranceNoRuleNamesAQocTheLandmarkMayShow) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0, 250);
+  int correctable = 0;
+  int lost_to_tolerance = 0;
+  constexpr double kTolerance = 1.0;
+  for (int world = 0; world < 30; ++world) {
+    Workspace w{{250, 250}, {}};
+    for (int i = 0; i < 60; ++i) w.objects.emplace_back(u(rng), u(rng));
+    const WorldViews views(w, WindowModel::with_side(50));
+    for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
+      const Placement p = Placement::of_node(node);
+      const auto landmark = views.isolated(p);
+      if (!landmark) continue;
+      const auto confusable = confusable_in_view(views, p, *landmark, Description::Isol);
+      const StepCheck exact = check_step(views, *landmark, confusable);
+      const StepCheck check = check_step(views, *landmark, confusable, kTolerance);
+      EXPECT_EQ(check.qoc, exact.qoc);
+      if (check.kind == Verifiability::trivial || check.kind == Verifiability::unverifiable) {
+        lost_to_tolerance += exact.kind == Verifiability::correctable;
+        continue;
+      }
+      const QocRange mine = views.qoc_range(*landmark, kTolerance);
+      for (const std::uint32_t id : confusable) ASSERT_FALSE(views.qoc_range(id, kTolerance).overlaps(mine));
+      if (check.kind != Verifiability::correctable) continue;
+      ++correctable;
+      for (const RecoveryRule& rule : check.rules) {
+        if (rule.corner) {
+          ASSERT_FALSE(mine.contains(rule.qoc)) << "a rule for QOC " << rule.qoc;
+        }
+      }
+      // Every QOC a mistake may show has its rule.
+      MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW};
+      for (const std::uint32_t id : confusable) {
+        const QocRange r = views.qoc_range(id, kTolerance);
+        for (int q = r.low; q <= r.high; ++q) ASSERT_NE(entry.recovery_for(q), nullptr);
+      }
+    }
+  }
+  EXPECT_GT(correctable, 20);
+  EXPECT_GT(lost_to_tolerance, 0);  // the tolerance does refuse rules the exact geometry would give
+}
+
 }  // namespace
 }  // namespace neopipe::nav::mapmaker

@@ -756,12 +756,15 @@ TEST(Compile, EveryExampleCompiles) {
   }
 }
 
-TEST(Compile, BlobsExampleEqualsTheBuiltInBlobGraph) {
-  const auto frames = disc_frames(8, {96, 72}, 2024);
+namespace {
+
+// The example file and the built-in graph give the same blob tables on `frames`.
+void expect_example_equals_built_in(const std::string& example, const pl::GraphSpec& built_in_spec,
+                                    const std::vector<cv::Mat>& frames) {
   const auto from_file = pl::run_frames(
-      pl::compile(pl::load_graph_spec(std::string(NEOPIPE_EXAMPLES_DIR) + "/blobs.yaml"), pl::standard_kernels()),
+      pl::compile(pl::load_graph_spec(std::string(NEOPIPE_EXAMPLES_DIR) + "/" + example), pl::standard_kernels()),
       frames, {.threads = 2});
-  const auto built_in = pl::run_frames(pl::compile(pl::blob_graph(), pl::standard_kernels()), frames, {.threads = 2});
+  const auto built_in = pl::run_frames(pl::compile(built_in_spec, pl::standard_kernels()), frames, {.threads = 2});
   ASSERT_EQ(from_file.size(), frames.size());
   ASSERT_EQ(built_in.size(), frames.size());
   size_t total = 0;
@@ -775,6 +778,22 @@ TEST(Compile, BlobsExampleEqualsTheBuiltInBlobGraph) {
     total += a.size();
   }
   EXPECT_GT(total, frames.size());  // the frames do have blobs, so the comparison means something
+}
+
+}  // namespace
+
+TEST(Compile, BlobsExampleEqualsTheBuiltInBlobGraph) {
+  expect_example_equals_built_in("blobs.yaml", pl::blob_graph(), disc_frames(8, {96, 72}, 2024));
+}
+
+TEST(Compile, MarblesExampleEqualsTheBuiltInMarbleGraph) {
+  std::vector<cv::Mat> gray;
+  for (const cv::Mat& f : disc_frames(8, {96, 72}, 77)) {
+    cv::Mat g;
+    cv::cvtColor(f, g, cv::COLOR_BGR2GRAY);
+    gray.push_back(g);
+  }
+  expect_example_equals_built_in("marbles.yaml", pl::marble_graph(), gray);
 }
 
 TEST(Compile, BlobGraphOptions) {
