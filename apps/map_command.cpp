@@ -177,6 +177,10 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
   cmd->add_option("--margin", a.margin, "Corner margin m, mm (default 0.05 a)");
   cmd->add_option("--sigma", a.sigma, "Position error sd per axis, mm (default: from --calib, else 1)");
   cmd->add_option("--calib", a.calib, "Calibration file (neopipe calibrate): sigma = its held-out sd");
+  cmd->add_option("--border-tolerance", a.border_tolerance,
+                  "mm: objects this close to a quadrant border may fall either side; verification and recovery "
+                  "rules hold both ways (neopipe nav uses 3 sqrt(2) sigma + 0.25)")
+      ->capture_default_str();
   cmd->add_option("--move-error", a.move_error, "Navigator's across-track error, sd mm per mm moved")
       ->capture_default_str();
   cmd->add_option("--rotation-error", a.rotation_error, "Navigator's heading error, sd degrees per mm moved")
@@ -218,6 +222,9 @@ int map_command(const MapArgs& a) {
   options.window = nav::WindowModel::with_side(a.window);
   if (a.margin) options.window.margin = *a.margin;
   options.errors.sigma = sigma_of(a);
+  if (!(a.border_tolerance >= 0) || !std::isfinite(a.border_tolerance))
+    throw UsageError{fmt::format("--border-tolerance {}: must be >= 0 mm", a.border_tolerance)};
+  options.border_tolerance = a.border_tolerance;
   options.errors.translation_per_mm = a.move_error;
   options.errors.rotation_per_mm = a.rotation_error * std::numbers::pi / 180;
   const mm::MapMaker maker(std::move(workspace), options);
@@ -255,6 +262,7 @@ int map_command(const MapArgs& a) {
     j["objects"] = views.object_count();
     j["window"] = {{"side", options.window.side}, {"margin", options.window.margin}};
     j["sigma"] = options.errors.sigma;
+    j["border_tolerance"] = options.border_tolerance;
     j["positions"] = json::array();
     for (std::uint32_t i = 0; i < views.object_count(); ++i) {
       j["positions"].push_back({views.position(i).x(), views.position(i).y()});

@@ -16,6 +16,7 @@ struct MapArgs {
   double window = 50;
   std::optional<double> margin;
   std::optional<double> sigma;
+  double border_tolerance = 0;
   std::string calib;              ///< σ from its held-out error
   double move_error = 0.003;      ///< across-track sd per mm moved
   double rotation_error = 0.002;  ///< heading sd, degrees per mm moved

@@ -46,6 +46,7 @@ TEST_F(MapCli, JsonHasParkwaysQocTrajectoriesAndARoute) {
   }
   EXPECT_LE(j["strongly_connected"]["with_trajectories"].get<int>(), j["strongly_connected"]["parkways"].get<int>());
   EXPECT_FALSE(j.contains("path"));
+  EXPECT_EQ(j["border_tolerance"], 0.0);  // by default the map-maker takes its positions as exact
 
   // A route between the two objects farthest apart that are reachable.
   int routes = 0;
@@ -103,6 +104,7 @@ TEST_F(MapCli, BadInputIsOneLineAndNonZero) {
   EXPECT_TRUE(one_error_line(run_neopipe({"map", "--world", w, "--from", "5"}), "--from and --to"));
   EXPECT_TRUE(one_error_line(run_neopipe({"map", "--world", w, "--window", "800"}), "larger than"));
   EXPECT_TRUE(one_error_line(run_neopipe({"map", "--world", w, "--cost", "cheapest"}), "--cost"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"map", "--world", w, "--border-tolerance", "-1"}), "--border-tolerance"));
   EXPECT_TRUE(one_error_line(run_neopipe({"map", "--world", w, "--plot", file("m.gif")}), ".png or .svg"));
   EXPECT_TRUE(one_error_line(run_neopipe({"map"}), "--world"));
   write_text(file("bad.yaml"), "size: [100, 100]\nobjects:\n  - [10, 10]\n  - [10, oops]\n");
