@@ -183,9 +183,7 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
       ->capture_default_str();
   cmd->add_option("--from", a.from, "Start object id");
   cmd->add_option("--to", a.to, "Goal object id");
-  cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  add_cost_option(cmd, a.cost);
   cmd->add_option("--reliable-threshold", a.reliable_threshold,
                   "Selection reliability an edge needs to belong to the reliable parkway")
       ->capture_default_str()

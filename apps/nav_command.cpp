@@ -262,9 +262,7 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
-  cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  add_cost_option(cmd, a.cost);
   cmd->add_option("--sigma-map", a.sigma_map, "Map-maker's position error, sd mm per axis")->capture_default_str();
   cmd->add_option("--sigma-move", a.sigma_move, "Arm's translation error, sd mm per mm moved")->capture_default_str();
   cmd->add_option("--sigma-rot", a.sigma_rot, "Arm's heading error, sd degrees per mm moved")->capture_default_str();

@@ -76,7 +76,7 @@ TEST(MapMaker, RoutesReplayToTheGoalWithTheirDistanceOnRandomWorlds) {
     for (int trial = 0; trial < 15; ++trial) {
       const std::uint32_t a = rng() % 60;
       const std::uint32_t b = (a + 1 + rng() % 59) % 60;
-      for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+      for (const CostCriterion c : kCriteria) {
         Route route;
         try {
           route = maker.plan(a, b, c);
@@ -120,6 +120,41 @@ TEST(MapMaker, TheThreeCriteriaOrderAsThePaperFinds) {
     }
   }
   EXPECT_GT(compared, 5);
+}
+
+// Landmark-based planning (the paper's foil, §7.2) minimises L and so never beats context-based
+// planning on D, nor loses to it on L; the route still reports the window travel it really costs.
+TEST(MapMaker, LandmarkRoutesMinimiseLandmarkDistanceAndDistanceRoutesTheTravel) {
+  int compared = 0, differ = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const MapMaker maker(random_workspace(120, 400, seed, 6), MapMakerOptions{});
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    for (int trial = 0; trial < 60; ++trial) {
+      const std::uint32_t a = rng() % 120;
+      const std::uint32_t b = (a + 1 + rng() % 119) % 120;
+      Route by_d, by_l;
+      try {
+        by_d = maker.plan(a, b, CostCriterion::distance);
+      } catch (const UnreachableGoal&) {
+        EXPECT_THROW(maker.plan(a, b, CostCriterion::landmark), UnreachableGoal);
+        continue;
+      }
+      by_l = maker.plan(a, b, CostCriterion::landmark);
+      ++compared;
+      EXPECT_LE(by_l.landmark_distance, by_d.landmark_distance + 1e-9) << a << "->" << b;
+      EXPECT_LE(by_d.distance, by_l.distance + 1e-9) << a << "->" << b;
+      double d = 0, l = 0;
+      for (const RouteStep& s : by_l.steps) {
+        d += s.distance;
+        l += s.step.landmark_distance;
+      }
+      EXPECT_NEAR(by_l.distance, d, 1e-9 * (1 + d));
+      EXPECT_NEAR(by_l.landmark_distance, l, 1e-9 * (1 + l));
+      if (by_l.distance > by_d.distance + 1e-9) ++differ;
+    }
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(differ, 5);  // else the two criteria would not have been told apart
 }
 
 TEST(MapMaker, ShortestRouteEqualsBruteForceOverAllSimpleStepSequences) {
