@@ -140,6 +140,7 @@ json route_json(const mm::Route& route) {
                  {"from_corner", nav::corner_name(s.from.corner)},
                  {"distance", rs.distance},
                  {"unreliability", s.unreliability()},
+                 {"landmark_distance", s.landmark_distance},
                  {"visible", s.visible},
                  {"verification", mm::verifiability_name(rs.check.kind)},
                  {"qoc", rs.check.qoc}};

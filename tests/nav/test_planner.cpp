@@ -248,6 +248,24 @@ TEST(Planner, TiesGoToTheEarlierEdgeAndTheSmallerNode) {
   }
 }
 
+TEST(Planner, LandmarkTiesGoToTheShorterThenTheMoreReliable) {
+  // The four corners a landmark can be held at give parallel edges of equal L: D must choose, then U.
+  PlanGraph g(3);
+  g.add_edge({0, 1, 3, 0.1, 5});   // 0
+  g.add_edge({0, 1, 2, 0.3, 5});   // 1
+  g.add_edge({0, 1, 2, 0.2, 5});   // 2: least D, then least U
+  g.add_edge({0, 1, 9, 0.2, 5});   // 3
+  g.add_edge({1, 2, 1, 0.0, 5});   // 4
+  g.add_edge({0, 2, 1, 0.0, 11});  // 5: far less D, but more L
+  const std::uint32_t src[] = {0}, dst[] = {2};
+  const auto p = plan_path(g, src, dst, CostCriterion::landmark);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{2, 4}));
+  EXPECT_EQ(p->landmark_distance, 10);
+  EXPECT_EQ(p->distance, 3);
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{5});
+}
+
 TEST(Planner, ZeroCostCyclesEnd) {
   PlanGraph g(4);
   g.add_edge({0, 1, 0, 0});
