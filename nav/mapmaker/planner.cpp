@@ -88,7 +88,9 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
     std::uint32_t node;
   };
   // std::*_heap keep the greatest element first; "later" puts the smallest (key, node id) there.
-  const auto later = [](const Entry& a, const Entry& b) { return std::tie(a.key, a.node) > std::tie(b.key, b.node); };
+  const auto later = [](const Entry& a, const Entry& b) {
+    return std::tie(a.key[0], a.key[1], a.key[2], a.node) > std::tie(b.key[0], b.key[1], b.key[2], b.node);
+  };
   const std::size_t n = graph.node_count();
   std::vector<Key> key(n, Key{kInf, kInf, kInf});
   std::vector<std::uint32_t> pred_edge(n, kNone);
@@ -121,7 +123,7 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
       if (settled[w]) continue;
       const Key k = step(key[v], order, edge);
       // Strictly better only: equal paths keep the first found, and zero-cost cycles cannot loop.
-      if (k < key[w]) {
+      if (std::tie(k[0], k[1], k[2]) < std::tie(key[w][0], key[w][1], key[w][2])) {
         key[w] = k;
         pred_edge[w] = e;
         heap.push_back({k, w});
