@@ -74,7 +74,7 @@ struct Order {
 
 using Key = std::array<double, 3>;
 
-Key step(const Key& from, const Order& order, const PlanEdge& edge) {
+Key extend(const Key& from, const Order& order, const PlanEdge& edge) {
   return {from[0] + order.first.of(edge), from[1] + order.second.of(edge), from[2] + order.third.of(edge)};
 }
 
@@ -121,7 +121,7 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
       const PlanEdge& edge = graph.edges()[e];
       const std::uint32_t w = edge.to;
       if (settled[w]) continue;
-      const Key k = step(key[v], order, edge);
+      const Key k = extend(key[v], order, edge);
       // Strictly better only: equal paths keep the first found, and zero-cost cycles cannot loop.
       if (std::tie(k[0], k[1], k[2]) < std::tie(key[w][0], key[w][1], key[w][2])) {
         key[w] = k;

@@ -18,6 +18,7 @@
 namespace neopipe::nav::mapmaker {
 
 enum class CostCriterion : std::uint8_t { distance, reliability, ratio, landmark };
+/// Every criterion, for option lists and parsing: a new criterion is added here once.
 inline constexpr std::array kCriteria{CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio,
                                       CostCriterion::landmark};
 
