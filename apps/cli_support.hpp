@@ -1,7 +1,13 @@
 #pragma once
-// What every subcommand shares: exit codes and one-line error reporting.
+// What every subcommand shares: exit codes, one-line error reporting, and the options that several
+// subcommands take.
 
 #include <string>
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace neopipe::apps {
 
@@ -15,6 +21,9 @@ enum ExitCode : int {
 
 /// Prints "neopipe COMMAND: error: MESSAGE" as one line on stderr (newlines in MESSAGE become spaces).
 void print_error(const std::string& command, const std::string& message);
+
+/// `--cost NAME` on `cmd` into `cost`: one of the planner's criteria (`neopipe map`, `neopipe nav`).
+CLI::Option* add_cost_option(CLI::App* cmd, std::string& cost);
 
 /// Thrown for a bad command line found after parsing (conflicting options and such).
 struct UsageError {

@@ -140,6 +140,7 @@ json route_json(const mm::Route& route) {
                  {"from_corner", nav::corner_name(s.from.corner)},
                  {"distance", rs.distance},
                  {"unreliability", s.unreliability()},
+                 {"landmark_distance", s.landmark_distance},
                  {"visible", s.visible},
                  {"verification", mm::verifiability_name(rs.check.kind)},
                  {"qoc", rs.check.qoc}};
@@ -187,9 +188,7 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
       ->capture_default_str();
   cmd->add_option("--from", a.from, "Start object id");
   cmd->add_option("--to", a.to, "Goal object id");
-  cmd->add_option("--cost", a.cost, "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  add_cost_option(cmd, a.cost);
   cmd->add_option("--reliable-threshold", a.reliable_threshold,
                   "Selection reliability an edge needs to belong to the reliable parkway")
       ->capture_default_str()

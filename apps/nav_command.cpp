@@ -142,7 +142,11 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
               {"to", route.goal},
               {"cost", mm::criterion_name(route.criterion)},
               {"custom_map", nav::format_custom_map(route.custom_map)},
-              {"planned", {{"D", route.distance}, {"U", route.unreliability}, {"steps", route.steps.size()}}},
+              {"planned",
+               {{"D", route.distance},
+                {"U", route.unreliability},
+                {"landmark_distance", route.landmark_distance},
+                {"steps", route.steps.size()}}},
               {"outcome", outcome_name(r.outcome)},
               {"reached_goal", reached_goal(r.outcome)},
               {"ending", ending_name(r.report.ending)},
@@ -312,11 +316,7 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
-  cmd->add_option("--cost", a.cost,
-                  "Path criterion: distance (min D), reliability (min U = -log R), ratio (min D/R, the paper's "
-                  "compromise)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"distance", "reliability", "ratio"}));
+  add_cost_option(cmd, a.cost);
   cmd->add_option("--sigma-map", a.sigma_map,
                   "Survey by moving each object N(0, S) mm per axis instead of through the global camera and its "
                   "calibration (the default)");

@@ -39,9 +39,10 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
       const Step& s = all[i];
       if (s.landmark == goal) {
         if (s.adjust != kCorners.front()) continue;  // one arrival edge per way of reaching it
-        graph.add_edge({node, goal_node, s.arrival_travel, s.unreliability()});
+        graph.add_edge({node, goal_node, s.arrival_travel, s.unreliability(), s.landmark_distance});
       } else {
-        graph.add_edge({node, Placement{s.landmark, s.adjust}.node(), s.travel, s.unreliability()});
+        graph.add_edge(
+            {node, Placement{s.landmark, s.adjust}.node(), s.travel, s.unreliability(), s.landmark_distance});
       }
       step_of_edge.push_back(i);
     }
@@ -63,6 +64,7 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
   route.criterion = criterion;
   route.distance = path->distance;
   route.unreliability = path->unreliability;
+  route.landmark_distance = path->landmark_distance;
   route.start_corner = all[step_of_edge[path->edges.front()]].from.corner;
   route.custom_map.entries.push_back({Description::Any, std::nullopt, {}, route.start_corner});
   for (std::size_t k = 0; k < path->edges.size(); ++k) {
@@ -81,7 +83,6 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     }
     rs.check = check_step(views_, s.landmark, confusable, options_.border_tolerance);
     rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust)};
-    route.landmark_distance += s.landmark_distance;
     route.custom_map.entries.push_back(rs.entry);
     route.steps.push_back(std::move(rs));
   }
@@ -93,18 +94,33 @@ std::string_view step_description(const Step& s) {
   return s.seek == Description::Obvious ? "OBVIOUS" : "ISOL";
 }
 
+namespace {
+
+// A step's share of what the route's criterion minimises (for ratio, its own D / R).
+double step_cost(CostCriterion criterion, const RouteStep& rs) {
+  switch (criterion) {
+    case CostCriterion::distance:
+      return rs.distance;
+    case CostCriterion::reliability:
+      return rs.step.unreliability();
+    case CostCriterion::ratio:
+      return rs.distance * std::exp(rs.step.unreliability());
+    case CostCriterion::landmark:
+      return rs.step.landmark_distance;
+  }
+  return rs.distance;
+}
+
+}  // namespace
+
 std::string route_table(const Route& route) {
   std::string out = fmt::format("{:>6} {:>6} {:<7} {:>9} {:>8} {:>9}  {}\n", "FROM", "TO", "DESC", "DISTANCE", "UNPROB",
                                 "COST", "VERIFICATION");
   for (const RouteStep& rs : route.steps) {
     const Step& s = rs.step;
     const std::string_view desc = step_description(s);
-    const double u = s.unreliability();
-    double cost = rs.distance;
-    if (route.criterion == CostCriterion::reliability) cost = u;
-    if (route.criterion == CostCriterion::ratio) cost = rs.distance * std::exp(u);
     out += fmt::format("{:>6} {:>6} {:<7} {:>9.3f} {:>8.3f} {:>9.3f}  {}\n", s.from.object, s.landmark, desc,
-                       rs.distance, u, cost, verification_line(rs.check));
+                       rs.distance, s.unreliability(), step_cost(route.criterion, rs), verification_line(rs.check));
   }
   out += fmt::format("total: D {:.3f} mm, U {:.3f}, D/R {:.3f}, landmark-based distance {:.3f} mm, {} steps\n",
                      route.distance, route.unreliability, route.ratio(), route.landmark_distance, route.steps.size());

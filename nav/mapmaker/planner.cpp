@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -48,41 +49,57 @@ PlannedPath make_path(const PlanGraph& graph, std::vector<std::uint32_t> reverse
   for (const std::uint32_t e : path.edges) {
     path.distance += graph.edges()[e].distance;
     path.unreliability += graph.edges()[e].unreliability;
+    path.landmark_distance += graph.edges()[e].landmark_distance;
   }
   return path;
 }
 
-// What a Dijkstra run minimises: primary = wd D + wu U, ties broken by secondary = D or U (the one
-// with weight 0 for the pure criteria, D for the compromise's weighted sums).
-struct Weights {
-  double wd = 1, wu = 0;
-  bool secondary_is_distance = false;
-  static Weights distance() { return {1, 0, false}; }
-  static Weights reliability() { return {0, 1, true}; }
+// wd D + wu U + wl L of an edge. A zero weight adds an exact 0, so a form with one unit weight gives
+// that cost bit for bit, and sums along a path equal make_path's.
+struct Form {
+  double wd = 0, wu = 0, wl = 0;
+  double of(const PlanEdge& e) const { return wd * e.distance + wu * e.unreliability + wl * e.landmark_distance; }
 };
 
-// Dijkstra with a lexicographic key (primary, secondary). A pair key with nonnegative increments is as
-// good as a scalar one: extending a path never makes its key smaller, and floating-point addition is
-// monotone, so the settled key of a node is final and its primary component is the exact minimum.
+// What a Dijkstra run minimises: (first, then second, then third). Each criterion's tie-breaks are
+// part of its order, so no criterion needs a search of its own.
+struct Order {
+  Form first, second, third;
+  static Order distance() { return {{1, 0, 0}, {0, 1, 0}, {}}; }
+  static Order reliability() { return {{0, 1, 0}, {1, 0, 0}, {}}; }
+  static Order landmark() { return {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}; }
+  // The compromise's weighted sums, ties to the shorter.
+  static Order weighted(const Form& line) { return {line, {1, 0, 0}, {}}; }
+};
+
+using Key = std::array<double, 3>;
+
+Key extend(const Key& from, const Order& order, const PlanEdge& edge) {
+  return {from[0] + order.first.of(edge), from[1] + order.second.of(edge), from[2] + order.third.of(edge)};
+}
+
+// Dijkstra with a lexicographic key. A tuple key with nonnegative increments is as good as a scalar
+// one: extending a path never makes its key smaller, and floating-point addition is monotone, so the
+// settled key of a node is final and its first component is the exact minimum.
 std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std::uint32_t> sources,
-                                    const std::vector<char>& is_target, const Weights& weights, PlanStats& stats) {
+                                    const std::vector<char>& is_target, const Order& order, PlanStats& stats) {
   struct Entry {
-    double primary, secondary;
+    Key key;
     std::uint32_t node;
   };
   // std::*_heap keep the greatest element first; "later" puts the smallest (key, node id) there.
   const auto later = [](const Entry& a, const Entry& b) {
-    return std::tie(a.primary, a.secondary, a.node) > std::tie(b.primary, b.secondary, b.node);
+    return std::tie(a.key[0], a.key[1], a.key[2], a.node) > std::tie(b.key[0], b.key[1], b.key[2], b.node);
   };
   const std::size_t n = graph.node_count();
-  std::vector<double> primary(n, kInf), secondary(n, kInf);
+  std::vector<Key> key(n, Key{kInf, kInf, kInf});
   std::vector<std::uint32_t> pred_edge(n, kNone);
   std::vector<char> settled(n, 0);
   std::vector<Entry> heap;
   for (const std::uint32_t s : sources) {
-    if (primary[s] == 0) continue;  // listed twice
-    primary[s] = secondary[s] = 0;
-    heap.push_back({0, 0, s});
+    if (key[s][0] == 0) continue;  // listed twice
+    key[s] = Key{0, 0, 0};
+    heap.push_back({key[s], s});
     std::push_heap(heap.begin(), heap.end(), later);
     ++stats.labels_created;
   }
@@ -104,14 +121,12 @@ std::optional<PlannedPath> dijkstra(const PlanGraph& graph, std::span<const std:
       const PlanEdge& edge = graph.edges()[e];
       const std::uint32_t w = edge.to;
       if (settled[w]) continue;
-      const double p = primary[v] + (weights.wd * edge.distance + weights.wu * edge.unreliability);
-      const double s = secondary[v] + (weights.secondary_is_distance ? edge.distance : edge.unreliability);
+      const Key k = extend(key[v], order, edge);
       // Strictly better only: equal paths keep the first found, and zero-cost cycles cannot loop.
-      if (std::tie(p, s) < std::tie(primary[w], secondary[w])) {
-        primary[w] = p;
-        secondary[w] = s;
+      if (std::tie(k[0], k[1], k[2]) < std::tie(key[w][0], key[w][1], key[w][2])) {
+        key[w] = k;
         pred_edge[w] = e;
-        heap.push_back({p, s, w});
+        heap.push_back({k, w});
         std::push_heap(heap.begin(), heap.end(), later);
         ++stats.labels_created;
       }
@@ -136,12 +151,12 @@ class CompromiseSearch {
       : graph_(graph), sources_(sources), is_target_(is_target), stats_(stats) {}
 
   std::optional<PlannedPath> run() {
-    const auto shortest = dijkstra(graph_, sources_, is_target_, Weights::distance(), stats_);
+    const auto shortest = dijkstra(graph_, sources_, is_target_, Order::distance(), stats_);
     if (!shortest) return std::nullopt;
-    const auto most_reliable = dijkstra(graph_, sources_, is_target_, Weights::reliability(), stats_);
+    const auto most_reliable = dijkstra(graph_, sources_, is_target_, Order::reliability(), stats_);
     best_ = *shortest;
     consider(*most_reliable);
-    split({*shortest, Weights::distance()}, {*most_reliable, Weights::reliability()}, 0);
+    split({*shortest, Order::distance().first}, {*most_reliable, Order::reliability().first}, 0);
     return best_;
   }
 
@@ -160,7 +175,7 @@ class CompromiseSearch {
   // A hull vertex and the weights it minimises: every path lies on or above its line wd D + wu U = c.
   struct Vertex {
     PlannedPath path;
-    Weights line;
+    Form line;
     double level() const { return line.wd * path.distance + line.wu * path.unreliability; }
   };
 
@@ -185,8 +200,8 @@ class CompromiseSearch {
       return;
     }
     if (floor_between(p, q) > best_.ratio() * (1 + kRelativeGap)) return;
-    const Weights w{p.path.unreliability - q.path.unreliability, q.path.distance - p.path.distance, true};
-    const auto r = dijkstra(graph_, sources_, is_target_, w, stats_);
+    const Form w{p.path.unreliability - q.path.unreliability, q.path.distance - p.path.distance};
+    const auto r = dijkstra(graph_, sources_, is_target_, Order::weighted(w), stats_);
     const Vertex v{*r, w};
     const double on_segment = w.wd * p.path.distance + w.wu * p.path.unreliability;
     if (!(v.level() < on_segment - kRelativeGap * on_segment)) return;
@@ -219,12 +234,14 @@ std::string_view criterion_name(CostCriterion c) {
       return "reliability";
     case CostCriterion::ratio:
       return "ratio";
+    case CostCriterion::landmark:
+      return "landmark";
   }
   return "?";
 }
 
 std::optional<CostCriterion> parse_criterion(std::string_view text) {
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio})
+  for (const CostCriterion c : kCriteria)
     if (text == criterion_name(c)) return c;
   return std::nullopt;
 }
@@ -243,6 +260,7 @@ std::uint32_t PlanGraph::add_edge(const PlanEdge& edge) {
         fmt::format("plan edge {} ({} -> {}): node out of range ({} nodes)", index, edge.from, edge.to, node_count()));
   check_cost(index, edge, "distance", edge.distance);
   check_cost(index, edge, "unreliability", edge.unreliability);
+  check_cost(index, edge, "landmark distance", edge.landmark_distance);
   edges_.push_back(edge);
   indexed_ = false;
   return static_cast<std::uint32_t>(index);
@@ -286,9 +304,11 @@ std::optional<PlannedPath> plan_path(const PlanGraph& graph, std::span<const std
     if (is_source[v] && is_target[v]) return PlannedPath{};
   switch (criterion) {
     case CostCriterion::distance:
-      return dijkstra(graph, sources, is_target, Weights::distance(), stats);
+      return dijkstra(graph, sources, is_target, Order::distance(), stats);
     case CostCriterion::reliability:
-      return dijkstra(graph, sources, is_target, Weights::reliability(), stats);
+      return dijkstra(graph, sources, is_target, Order::reliability(), stats);
+    case CostCriterion::landmark:
+      return dijkstra(graph, sources, is_target, Order::landmark(), stats);
     case CostCriterion::ratio:
       return CompromiseSearch(graph, sources, is_target, stats).run();
   }

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "cli_test_support.hpp"
 #include "nav/common/custom_map.hpp"
@@ -85,6 +88,30 @@ TEST_F(MapCli, TextReportTableAndPlots) {
   EXPECT_NE(slurp(file("m.svg")).find("<svg"), std::string::npos);
   ASSERT_EQ(run_neopipe({"map", "--world", file("w.yaml"), "--plot", file("m.png")}).exit_code, 0);
   EXPECT_GT(fs::file_size(file("m.png")), 5000U);
+}
+
+TEST_F(MapCli, EveryCostCriterionAndTheLandmarkBasedPath) {
+  // Four objects where the path of least landmark-based distance (via 1) is not the path of least
+  // window travel (via 3): test_map_maker.cpp works both out by hand.
+  write_text(file("four.yaml"),
+             "size: [160, 160]\nobjects:\n  - [106, 29]\n  - [89, 44]\n  - [123, 89]\n  - [150, 47]\n");
+  std::map<std::string, json> costs;
+  for (const std::string cost : {"distance", "reliability", "ratio", "landmark"}) {
+    const auto r =
+        run_neopipe({"map", "--world", file("four.yaml"), "--json", "--from", "0", "--to", "2", "--cost", cost});
+    ASSERT_EQ(r.exit_code, 0) << cost << ": " << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_EQ(j["cost"], cost);
+    costs[cost] = j["costs"];
+    if (cost == "landmark") {
+      EXPECT_EQ(j["custom_map_text"], "((*, SE), (Obvious, SW), (Obvious, -))");
+      EXPECT_NEAR(j["path"][1]["landmark_distance"].get<double>(), std::hypot(17, 15), 1e-9);
+    }
+  }
+  EXPECT_LT(costs["landmark"]["landmark_distance"].get<double>(), costs["distance"]["landmark_distance"].get<double>());
+  EXPECT_LT(costs["distance"]["D"].get<double>(), costs["landmark"]["D"].get<double>());
+  const auto help = run_neopipe({"map", "--help"});
+  EXPECT_NE(help.out.find("landmark"), std::string::npos) << help.out;
 }
 
 TEST_F(MapCli, UnreachableGoalHasItsOwnExitCode) {

@@ -68,6 +68,16 @@ TEST_F(NavCli, OneErrorFreeJourneyOnASmallWorldSucceeds) {
   EXPECT_NE(text.out.find("survey: global camera + calibration"), std::string::npos);
 }
 
+TEST_F(NavCli, LandmarkBasedPathsCanBeFollowed) {
+  const auto r = run_neopipe({"nav", "--world", small_world(), "--from", "0", "--to", "2", "--cost", "landmark",
+                              "--sigma-map", "0", "--sigma-move", "0", "--sigma-rot", "0", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["cost"], "landmark");
+  EXPECT_GT(j["planned"]["landmark_distance"].get<double>(), 0);
+  EXPECT_EQ(j["outcome"], "success_direct");
+}
+
 TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
   const std::string world = default_world();
   const auto run = [&](const std::string& threads) {

@@ -76,7 +76,7 @@ TEST(MapMaker, RoutesReplayToTheGoalWithTheirDistanceOnRandomWorlds) {
     for (int trial = 0; trial < 15; ++trial) {
       const std::uint32_t a = rng() % 60;
       const std::uint32_t b = (a + 1 + rng() % 59) % 60;
-      for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+      for (const CostCriterion c : kCriteria) {
         Route route;
         try {
           route = maker.plan(a, b, c);
@@ -120,6 +120,67 @@ TEST(MapMaker, TheThreeCriteriaOrderAsThePaperFinds) {
     }
   }
   EXPECT_GT(compared, 5);
+}
+
+TEST(MapMaker, LandmarkBasedAndContextBasedShortestPathsDiffer) {
+  // From 0 to 2 (window 50 mm, margin 2.5). Object 3 is 47.5 mm from 0 but already in the window of
+  // (0, SW); holding it at SE moves the window by (-1, 18) and brings 2 into view. Object 1 is only
+  // 22.7 mm from 0, on the other side: it is in view from (0, SE), and holding it at SW, the corner
+  // that looks towards 2, moves the window by (28, 15). Every step is an obvious parkway step.
+  const Workspace w{{160, 160}, {{106, 29}, {89, 44}, {123, 89}, {150, 47}}};
+  const MapMaker maker(w, MapMakerOptions{});
+  const Route by_d = maker.plan(0, 2, CostCriterion::distance);
+  const Route by_l = maker.plan(0, 2, CostCriterion::landmark);
+  EXPECT_EQ(format_custom_map(by_d.custom_map), "((*, SW), (Obvious, SE), (Obvious, -))");
+  EXPECT_NEAR(by_d.distance, std::hypot(1, 18), 1e-9);
+  EXPECT_NEAR(by_d.landmark_distance, std::hypot(44, 18) + std::hypot(27, 42), 1e-9);
+  EXPECT_EQ(format_custom_map(by_l.custom_map), "((*, SE), (Obvious, SW), (Obvious, -))");
+  EXPECT_NEAR(by_l.distance, std::hypot(28, 15), 1e-9);
+  EXPECT_NEAR(by_l.landmark_distance, std::hypot(17, 15) + std::hypot(34, 45), 1e-9);
+  ASSERT_EQ(by_l.steps.size(), 2U);
+  EXPECT_EQ(by_l.steps[0].step.landmark, 1U);
+  EXPECT_EQ(by_l.criterion, CostCriterion::landmark);
+  // The table's cost column is what the criterion adds up.
+  EXPECT_NE(route_table(by_l).find("22.672"), std::string::npos) << route_table(by_l);
+  const auto end = replay(maker.views(), 0, by_l.custom_map);
+  ASSERT_TRUE(end);
+  EXPECT_EQ(end->end, 2U);
+  EXPECT_NEAR(end->travel, by_l.distance, 1e-9);
+}
+
+// Landmark-based planning (the paper's foil, §7.2) minimises L and so never beats context-based
+// planning on D, nor loses to it on L; the route still reports the window travel it really costs.
+TEST(MapMaker, LandmarkRoutesMinimiseLandmarkDistanceAndDistanceRoutesTheTravel) {
+  int compared = 0, differ = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const MapMaker maker(random_workspace(120, 400, seed, 6), MapMakerOptions{});
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    for (int trial = 0; trial < 60; ++trial) {
+      const std::uint32_t a = rng() % 120;
+      const std::uint32_t b = (a + 1 + rng() % 119) % 120;
+      Route by_d, by_l;
+      try {
+        by_d = maker.plan(a, b, CostCriterion::distance);
+      } catch (const UnreachableGoal&) {
+        EXPECT_THROW(maker.plan(a, b, CostCriterion::landmark), UnreachableGoal);
+        continue;
+      }
+      by_l = maker.plan(a, b, CostCriterion::landmark);
+      ++compared;
+      EXPECT_LE(by_l.landmark_distance, by_d.landmark_distance + 1e-9) << a << "->" << b;
+      EXPECT_LE(by_d.distance, by_l.distance + 1e-9) << a << "->" << b;
+      double d = 0, l = 0;
+      for (const RouteStep& s : by_l.steps) {
+        d += s.distance;
+        l += s.step.landmark_distance;
+      }
+      EXPECT_NEAR(by_l.distance, d, 1e-9 * (1 + d));
+      EXPECT_NEAR(by_l.landmark_distance, l, 1e-9 * (1 + l));
+      if (by_l.distance > by_d.distance + 1e-9) ++differ;
+    }
+  }
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(differ, 5);  // else the two criteria would not have been told apart
 }
 
 TEST(MapMaker, ShortestRouteEqualsBruteForceOverAllSimpleStepSequences) {

@@ -22,9 +22,11 @@ double ratio_of(double d, double u) {
 }
 
 // Random graph with D and U positively correlated, as window travel and its unreliability are, plus
-// a share of edges where they disagree so the three criteria pick different paths.
+// a share of edges where they disagree so the three criteria pick different paths. L, the distance
+// between the landmarks, is D give or take the corner changes, in quarters so that L ties and D
+// must break them; it comes from a stream of its own so that D and U do not depend on it.
 PlanGraph random_graph(std::uint32_t nodes, double density, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
+  std::mt19937_64 rng(seed), landmark_rng(seed ^ 0x5eed);
   std::uniform_real_distribution<double> unit(0, 1);
   PlanGraph g(nodes);
   for (std::uint32_t a = 0; a < nodes; ++a)
@@ -32,30 +34,37 @@ PlanGraph random_graph(std::uint32_t nodes, double density, std::uint64_t seed) 
       if (a == b || unit(rng) > density) continue;
       const double d = std::round(unit(rng) * 100) / 4;  // quarters of a mm: exact ties happen
       const double u = unit(rng) < 0.7 ? d * 0.004 * unit(rng) : 0.3 * unit(rng);
-      g.add_edge({a, b, d, u});
+      const double l = std::max(0.0, d + std::round((unit(landmark_rng) - 0.5) * 40) / 4);
+      g.add_edge({a, b, d, u, l});
     }
   return g;
 }
 
 struct Best {
-  double d = kInf, u = kInf, r = kInf;
+  double d = kInf, u = kInf, r = kInf, l = kInf;
+};
+
+struct Bests {
+  Best by_d, by_u, by_r, by_l;
 };
 
 // Every simple path from `source` to `target` by depth-first search; keeps the best key per criterion.
-void enumerate(const PlanGraph& g, std::uint32_t v, std::uint32_t target, double d, double u,
-               std::vector<char>& on_path, Best& by_d, Best& by_u, Best& by_r) {
+void enumerate(const PlanGraph& g, std::uint32_t v, std::uint32_t target, const Best& cost, std::vector<char>& on_path,
+               Bests& best) {
   if (v == target) {
-    if (std::tie(d, u) < std::tie(by_d.d, by_d.u)) by_d = {d, u, ratio_of(d, u)};
-    if (std::tie(u, d) < std::tie(by_u.u, by_u.d)) by_u = {d, u, ratio_of(d, u)};
-    const double r = ratio_of(d, u);
-    if (std::tie(r, d, u) < std::tie(by_r.r, by_r.d, by_r.u)) by_r = {d, u, r};
+    const auto [d, u, r, l] = cost;
+    if (std::tie(d, u) < std::tie(best.by_d.d, best.by_d.u)) best.by_d = cost;
+    if (std::tie(u, d) < std::tie(best.by_u.u, best.by_u.d)) best.by_u = cost;
+    if (std::tie(r, d, u) < std::tie(best.by_r.r, best.by_r.d, best.by_r.u)) best.by_r = cost;
+    if (std::tie(l, d, u) < std::tie(best.by_l.l, best.by_l.d, best.by_l.u)) best.by_l = cost;
     return;
   }
   on_path[v] = 1;
   for (const std::uint32_t e : g.out_edges(v)) {
     const PlanEdge& edge = g.edges()[e];
     if (on_path[edge.to]) continue;
-    enumerate(g, edge.to, target, d + edge.distance, u + edge.unreliability, on_path, by_d, by_u, by_r);
+    const double d = cost.d + edge.distance, u = cost.u + edge.unreliability;
+    enumerate(g, edge.to, target, {d, u, ratio_of(d, u), cost.l + edge.landmark_distance}, on_path, best);
   }
   on_path[v] = 0;
 }
@@ -64,53 +73,65 @@ void expect_valid_path(const PlanGraph& g, const PlannedPath& p, std::uint32_t s
   ASSERT_FALSE(p.edges.empty());
   EXPECT_EQ(g.edges()[p.edges.front()].from, source);
   EXPECT_EQ(g.edges()[p.edges.back()].to, target);
-  double d = 0, u = 0;
+  double d = 0, u = 0, l = 0;
   for (std::size_t k = 0; k < p.edges.size(); ++k) {
     if (k > 0) {
       EXPECT_EQ(g.edges()[p.edges[k]].from, g.edges()[p.edges[k - 1]].to);
     }
     d += g.edges()[p.edges[k]].distance;
     u += g.edges()[p.edges[k]].unreliability;
+    l += g.edges()[p.edges[k]].landmark_distance;
   }
   EXPECT_EQ(p.distance, d);
   EXPECT_EQ(p.unreliability, u);
+  EXPECT_EQ(p.landmark_distance, l);
 }
 
 TEST(Planner, EachCriterionEqualsBruteForceOverAllSimplePaths) {
-  int compared = 0, criteria_differ = 0;
+  int compared = 0, criteria_differ = 0, landmark_differs = 0;
   for (std::uint64_t seed = 1; seed <= 60; ++seed) {
     const PlanGraph g = random_graph(8, 0.35, seed);
     for (std::uint32_t s = 0; s < 8; ++s)
       for (std::uint32_t t = 0; t < 8; ++t) {
         if (s == t) continue;
-        Best by_d, by_u, by_r;
+        Bests best;
         std::vector<char> on_path(8, 0);
-        enumerate(g, s, t, 0, 0, on_path, by_d, by_u, by_r);
+        enumerate(g, s, t, {0, 0, 0, 0}, on_path, best);
+        const auto [by_d, by_u, by_r, by_l] = best;
         const std::uint32_t src[] = {s}, dst[] = {t};
         const auto pd = plan_path(g, src, dst, CostCriterion::distance);
         const auto pu = plan_path(g, src, dst, CostCriterion::reliability);
         const auto pr = plan_path(g, src, dst, CostCriterion::ratio);
+        const auto pl = plan_path(g, src, dst, CostCriterion::landmark);
         ASSERT_EQ(pd.has_value(), by_d.d < kInf) << "seed " << seed << " " << s << "->" << t;
         ASSERT_EQ(pu.has_value(), pd.has_value());
         ASSERT_EQ(pr.has_value(), pd.has_value());
+        ASSERT_EQ(pl.has_value(), pd.has_value());
         if (!pd) continue;
         ++compared;
         expect_valid_path(g, *pd, s, t);
         expect_valid_path(g, *pu, s, t);
         expect_valid_path(g, *pr, s, t);
+        expect_valid_path(g, *pl, s, t);
         // Sums along different paths may round differently, hence the tolerance on equal keys.
         EXPECT_NEAR(pd->distance, by_d.d, 1e-9) << "seed " << seed << " " << s << "->" << t;
         EXPECT_NEAR(pd->unreliability, by_d.u, 1e-9);
         EXPECT_NEAR(pu->unreliability, by_u.u, 1e-9) << "seed " << seed << " " << s << "->" << t;
         EXPECT_NEAR(pu->distance, by_u.d, 1e-9);
         EXPECT_NEAR(pr->ratio(), by_r.r, 1e-9 * by_r.r) << "seed " << seed << " " << s << "->" << t;
+        EXPECT_NEAR(pl->landmark_distance, by_l.l, 1e-9) << "seed " << seed << " " << s << "->" << t;
+        EXPECT_NEAR(pl->distance, by_l.d, 1e-9) << "seed " << seed << " " << s << "->" << t;
+        EXPECT_NEAR(pl->unreliability, by_l.u, 1e-9);
         if (pr->ratio() < std::min(pd->ratio(), pu->ratio()) - 1e-9) ++criteria_differ;
+        if (pl->distance > pd->distance + 1e-9) ++landmark_differs;
       }
   }
   EXPECT_GT(compared, 1000);
   // The compromise must sometimes beat both single-criterion paths, or the test would not show that
-  // the compromise search is more than picking the better of the two.
+  // the compromise search is more than picking the better of the two; likewise the landmark-based
+  // shortest path must sometimes be longer in D, or min L would not be tested apart from min D.
   EXPECT_GT(criteria_differ, 10);
+  EXPECT_GT(landmark_differs, 10);
 }
 
 // Every Pareto-optimal (D, U) label at every node, by label correcting without any bound; the
@@ -192,7 +213,7 @@ TEST(Planner, UnreachableTargetIsNulloptAndCostsLittle) {
       if (a != b) g.add_edge({a, b, unit(rng) * 10, unit(rng)});
     }
   const std::uint32_t src[] = {0}, dst[] = {half + 3};
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+  for (const CostCriterion c : kCriteria) {
     PlanStats stats;
     EXPECT_FALSE(plan_path(g, src, dst, c, stats).has_value());
     EXPECT_LE(stats.labels_created, g.edges().size() + 1) << criterion_name(c);
@@ -203,7 +224,7 @@ TEST(Planner, SourceThatIsATargetGivesTheEmptyPath) {
   PlanGraph g(3);
   g.add_edge({0, 1, 1, 0.1});
   const std::uint32_t src[] = {0, 1}, dst[] = {1};
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+  for (const CostCriterion c : kCriteria) {
     const auto p = plan_path(g, src, dst, c);
     ASSERT_TRUE(p.has_value());
     EXPECT_TRUE(p->edges.empty());
@@ -220,11 +241,29 @@ TEST(Planner, TiesGoToTheEarlierEdgeAndTheSmallerNode) {
   g.add_edge({2, 3, 5, 0.5});  // 3
   g.add_edge({1, 3, 5, 0.5});  // 4
   const std::uint32_t src[] = {0}, dst[] = {3};
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+  for (const CostCriterion c : kCriteria) {
     const auto p = plan_path(g, src, dst, c);
     ASSERT_TRUE(p.has_value());
     EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{0, 4})) << criterion_name(c);
   }
+}
+
+TEST(Planner, LandmarkTiesGoToTheShorterThenTheMoreReliable) {
+  // The four corners a landmark can be held at give parallel edges of equal L: D must choose, then U.
+  PlanGraph g(3);
+  g.add_edge({0, 1, 3, 0.1, 5});   // 0
+  g.add_edge({0, 1, 2, 0.3, 5});   // 1
+  g.add_edge({0, 1, 2, 0.2, 5});   // 2: least D, then least U
+  g.add_edge({0, 1, 9, 0.2, 5});   // 3
+  g.add_edge({1, 2, 1, 0.0, 5});   // 4
+  g.add_edge({0, 2, 1, 0.0, 11});  // 5: far less D, but more L
+  const std::uint32_t src[] = {0}, dst[] = {2};
+  const auto p = plan_path(g, src, dst, CostCriterion::landmark);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{2, 4}));
+  EXPECT_EQ(p->landmark_distance, 10);
+  EXPECT_EQ(p->distance, 3);
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{5});
 }
 
 TEST(Planner, ZeroCostCyclesEnd) {
@@ -234,7 +273,7 @@ TEST(Planner, ZeroCostCyclesEnd) {
   g.add_edge({2, 0, 0, 0});
   g.add_edge({2, 3, 1, 0});
   const std::uint32_t src[] = {0}, dst[] = {3};
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+  for (const CostCriterion c : kCriteria) {
     const auto p = plan_path(g, src, dst, c);
     ASSERT_TRUE(p.has_value());
     EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{0, 1, 3})) << criterion_name(c);
@@ -264,14 +303,17 @@ TEST(Planner, RejectsBadEdgesAndNodes) {
   const std::uint32_t bad[] = {5}, ok[] = {1};
   EXPECT_THROW(plan_path(g, bad, ok, CostCriterion::distance), std::invalid_argument);
   EXPECT_THROW(plan_path(g, ok, bad, CostCriterion::ratio), std::invalid_argument);
-  EXPECT_EQ(parse_criterion("ratio"), CostCriterion::ratio);
+  EXPECT_THROW(g.add_edge({0, 1, 1, 0, -1}), std::invalid_argument);
+  for (const CostCriterion c : kCriteria) EXPECT_EQ(parse_criterion(criterion_name(c)), c);
+  EXPECT_EQ(parse_criterion("landmark"), CostCriterion::landmark);
   EXPECT_FALSE(parse_criterion("Ratio").has_value());
+  EXPECT_FALSE(parse_criterion("landmarks").has_value());
 }
 
 TEST(Planner, SameGraphSamePath) {
   const PlanGraph a = random_graph(60, 0.08, 42), b = random_graph(60, 0.08, 42);
   const std::uint32_t src[] = {0, 1}, dst[] = {50, 59};
-  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::ratio}) {
+  for (const CostCriterion c : kCriteria) {
     const auto pa = plan_path(a, src, dst, c), pb = plan_path(b, src, dst, c);
     ASSERT_EQ(pa.has_value(), pb.has_value());
     if (pa) {
