@@ -32,6 +32,25 @@ const Workspace kFig23{{160, 160},
                         {86, 117},
                         {113, 125}}};
 
+// Calls visit(views, landmark, confusable) for every placement of `worlds` random worlds (side
+// `side` mm, `objects` marbles, seeded) whose view has an isolated landmark.
+template <typename Visit>
+void for_each_isolated_step(std::uint64_t seed, int worlds, double side, int objects, Visit&& visit) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, side);
+  for (int world = 0; world < worlds; ++world) {
+    Workspace w{{side, side}, {}};
+    for (int i = 0; i < objects; ++i) w.objects.emplace_back(u(rng), u(rng));
+    const WorldViews views(w, WindowModel::with_side(50));
+    for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
+      const Placement p = Placement::of_node(node);
+      const auto landmark = views.isolated(p);
+      if (!landmark) continue;
+      visit(views, *landmark, confusable_in_view(views, p, *landmark, Description::Isol));
+    }
+  }
+}
+
 TEST(Verification, PapersFig23SituationIsDetectableAndRecoverable) {
   const WorldViews views(kFig23, WindowModel::with_side(50));
   const Placement from{7, Corner::SE};
@@ -67,28 +86,17 @@ TEST(Verification, PapersFig23SituationIsDetectableAndRecoverable) {
 }
 
 TEST(Verification, SameQocAsAConfusableObjectIsUnverifiable) {
-  std::mt19937_64 rng(4);
-  std::uniform_real_distribution<double> u(0, 200);
   int unverifiable = 0;
-  for (int world = 0; world < 20; ++world) {
-    Workspace w{{200, 200}, {}};
-    for (int i = 0; i < 50; ++i) w.objects.emplace_back(u(rng), u(rng));
-    const WorldViews views(w, WindowModel::with_side(50));
-    for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
-      const Placement p = Placement::of_node(node);
-      const auto landmark = views.isolated(p);
-      if (!landmark) continue;
-      const auto confusable = confusable_in_view(views, p, *landmark, Description::Isol);
-      const StepCheck check = check_step(views, *landmark, confusable);
-      const bool shared = std::any_of(confusable.begin(), confusable.end(),
-                                      [&](std::uint32_t id) { return views.qoc(id) == views.qoc(*landmark); });
-      ASSERT_EQ(check.kind == Verifiability::unverifiable, shared);
-      if (!shared) continue;
-      ++unverifiable;
-      EXPECT_TRUE(check.rules.empty());
-      EXPECT_EQ(verification_line(check), "UNVERIFIABLE (Not Correctable)");
-    }
-  }
+  for_each_isolated_step(4, 20, 200, 50, [&](const WorldViews& views, std::uint32_t landmark, const auto& confusable) {
+    const StepCheck check = check_step(views, landmark, confusable);
+    const bool shared = std::any_of(confusable.begin(), confusable.end(),
+                                    [&](std::uint32_t id) { return views.qoc(id) == views.qoc(landmark); });
+    ASSERT_EQ(check.kind == Verifiability::unverifiable, shared);
+    if (!shared) return;
+    ++unverifiable;
+    EXPECT_TRUE(check.rules.empty());
+    EXPECT_EQ(verification_line(check), "UNVERIFIABLE (Not Correctable)");
+  });
   EXPECT_GT(unverifiable, 20);
 }
 
@@ -104,35 +112,24 @@ TEST(Verification, ObviousLandmarkIsTrivial) {
 TEST(Verification, RecoveryRulesAlwaysLeadBackWhenCorrectable) {
   // On random worlds, every correctable step's rules, applied from every confusable object, reach
   // the intended landmark; every detectable step's landmark QOC differs from all confusables'.
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(0, 250);
   int correctable = 0;
-  for (int world = 0; world < 30; ++world) {
-    Workspace w{{250, 250}, {}};
-    for (int i = 0; i < 60; ++i) w.objects.emplace_back(u(rng), u(rng));
-    const WorldViews views(w, WindowModel::with_side(50));
-    for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
-      const Placement p = Placement::of_node(node);
-      const auto landmark = views.isolated(p);
-      if (!landmark) continue;
-      const auto confusable = confusable_in_view(views, p, *landmark, Description::Isol);
-      const StepCheck check = check_step(views, *landmark, confusable);
-      if (check.kind == Verifiability::trivial || check.kind == Verifiability::unverifiable) continue;
-      for (const std::uint32_t id : confusable) ASSERT_NE(views.qoc(id), check.qoc);
-      if (check.kind != Verifiability::correctable) continue;
-      ++correctable;
-      MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW};
-      for (std::uint32_t at : confusable) {
-        int hops = 0;
-        while (at != *landmark) {
-          const RecoveryRule* rule = entry.recovery_for(views.qoc(at));
-          ASSERT_NE(rule, nullptr);
-          at = *views.isolated({at, *rule->corner});
-          ASSERT_LT(++hops, 8);
-        }
+  for_each_isolated_step(8, 30, 250, 60, [&](const WorldViews& views, std::uint32_t landmark, const auto& confusable) {
+    const StepCheck check = check_step(views, landmark, confusable);
+    if (check.kind == Verifiability::trivial || check.kind == Verifiability::unverifiable) return;
+    for (const std::uint32_t id : confusable) ASSERT_NE(views.qoc(id), check.qoc);
+    if (check.kind != Verifiability::correctable) return;
+    ++correctable;
+    MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW};
+    for (std::uint32_t at : confusable) {
+      int hops = 0;
+      while (at != landmark) {
+        const RecoveryRule* rule = entry.recovery_for(views.qoc(at));
+        ASSERT_NE(rule, nullptr);
+        at = *views.isolated({at, *rule->corner});
+        ASSERT_LT(++hops, 8);
       }
     }
-  }
+  });
   EXPECT_GT(correctable, 50);
 }
 
@@ -172,44 +169,33 @@ TEST(Verification, QocRangeHoldsWhateverSideABorderlineObjectFalls) {
 }
 
 TEST(Verification, WithABorderToleranceNoRuleNamesAQocTheLandmarkMayShow) {
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(0, 250);
   int correctable = 0;
   int lost_to_tolerance = 0;
   constexpr double kTolerance = 1.0;
-  for (int world = 0; world < 30; ++world) {
-    Workspace w{{250, 250}, {}};
-    for (int i = 0; i < 60; ++i) w.objects.emplace_back(u(rng), u(rng));
-    const WorldViews views(w, WindowModel::with_side(50));
-    for (std::uint32_t node = 0; node < 4 * w.objects.size(); ++node) {
-      const Placement p = Placement::of_node(node);
-      const auto landmark = views.isolated(p);
-      if (!landmark) continue;
-      const auto confusable = confusable_in_view(views, p, *landmark, Description::Isol);
-      const StepCheck exact = check_step(views, *landmark, confusable);
-      const StepCheck check = check_step(views, *landmark, confusable, kTolerance);
-      EXPECT_EQ(check.qoc, exact.qoc);
-      if (check.kind == Verifiability::trivial || check.kind == Verifiability::unverifiable) {
-        lost_to_tolerance += exact.kind == Verifiability::correctable;
-        continue;
-      }
-      const QocRange mine = views.qoc_range(*landmark, kTolerance);
-      for (const std::uint32_t id : confusable) ASSERT_FALSE(views.qoc_range(id, kTolerance).overlaps(mine));
-      if (check.kind != Verifiability::correctable) continue;
-      ++correctable;
-      for (const RecoveryRule& rule : check.rules) {
-        if (rule.corner) {
-          ASSERT_FALSE(mine.contains(rule.qoc)) << "a rule for QOC " << rule.qoc;
-        }
-      }
-      // Every QOC a mistake may show has its rule.
-      MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW};
-      for (const std::uint32_t id : confusable) {
-        const QocRange r = views.qoc_range(id, kTolerance);
-        for (int q = r.low; q <= r.high; ++q) ASSERT_NE(entry.recovery_for(q), nullptr);
+  for_each_isolated_step(8, 30, 250, 60, [&](const WorldViews& views, std::uint32_t landmark, const auto& confusable) {
+    const StepCheck exact = check_step(views, landmark, confusable);
+    const StepCheck check = check_step(views, landmark, confusable, kTolerance);
+    EXPECT_EQ(check.qoc, exact.qoc);
+    if (check.kind == Verifiability::trivial || check.kind == Verifiability::unverifiable) {
+      lost_to_tolerance += exact.kind == Verifiability::correctable;
+      return;
+    }
+    const QocRange mine = views.qoc_range(landmark, kTolerance);
+    for (const std::uint32_t id : confusable) ASSERT_FALSE(views.qoc_range(id, kTolerance).overlaps(mine));
+    if (check.kind != Verifiability::correctable) return;
+    ++correctable;
+    for (const RecoveryRule& rule : check.rules) {
+      if (rule.corner) {
+        ASSERT_FALSE(mine.contains(rule.qoc)) << "a rule for QOC " << rule.qoc;
       }
     }
-  }
+    // Every QOC a mistake may show has its rule.
+    const MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW};
+    for (const std::uint32_t id : confusable) {
+      const QocRange r = views.qoc_range(id, kTolerance);
+      for (int q = r.low; q <= r.high; ++q) ASSERT_NE(entry.recovery_for(q), nullptr);
+    }
+  });
   EXPECT_GT(correctable, 20);
   EXPECT_GT(lost_to_tolerance, 0);  // the tolerance does refuse rules the exact geometry would give
 }
