@@ -18,6 +18,7 @@ void print_error(const std::string& command, const std::string& message) {
 
 CLI::Option* add_cost_option(CLI::App* cmd, std::string& cost) {
   std::vector<std::string> names;
+  names.reserve(nav::mapmaker::kCriteria.size());
   for (const auto c : nav::mapmaker::kCriteria) names.emplace_back(nav::mapmaker::criterion_name(c));
   return cmd
       ->add_option("--cost", cost,

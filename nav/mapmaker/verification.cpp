@@ -31,7 +31,7 @@ std::vector<std::uint32_t> confusable_on_trajectory(const WorldViews& views, con
   for (const std::uint32_t id : confusable_in_view(views, trajectory.from, trajectory.via, trajectory.description)) {
     out.insert(id);
   }
-  const Eigen::Vector2d p1 = views.position(trajectory.from.object);
+  const Eigen::Vector2d& p1 = views.position(trajectory.from.object);
   const double baseline = (views.position(trajectory.via) - p1).norm();
   const double slide = std::max(trajectory.slide, 1e-9);
   const double static_sd = std::sqrt(2.0) * errors.sigma / baseline;
@@ -107,7 +107,8 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
   // and third pass allow chains through rules already chosen (paper: C -> B -> I).
   std::map<int, Corner> rules;
   for (int pass = 0; pass < 3; ++pass) {
-    for (const auto& [q, objects] : by_qoc) {
+    for (const auto& [qoc, objects] : by_qoc) {
+      const int q = qoc;  // a plain variable: lambdas capture structured bindings only since C++20
       if (rules.count(q)) continue;
       for (const Corner c : kCorners) {
         std::map<int, Corner> trial = rules;
