@@ -50,7 +50,8 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
         ts.landmark = t->to;
         ts.slide = dir;
         ts.arrival_travel = t->slide;
-        ts.reliability = selection * trajectory_reliability(views, *t, errors);
+        ts.reliability =
+            selection * trajectory_reliability(views, *t, errors) * entry_order_agreement(views, *t, errors.sigma);
         add(ts, start + t->slide * t->heading(views));
       }
     }

@@ -7,6 +7,7 @@
 // paths away from such borderline placements.
 
 #include "nav/common/landmarks.hpp"
+#include "nav/mapmaker/trajectories.hpp"
 #include "nav/mapmaker/views.hpp"
 
 namespace neopipe::nav::mapmaker {
@@ -16,5 +17,12 @@ namespace neopipe::nav::mapmaker {
 /// N(0, 2 sigma^2) per axis (both positions carry the error); an object flips when its nearest edge
 /// moves past it; the flips are taken as independent. 1 when sigma is 0.
 double view_agreement(const WorldViews& views, const Placement& from, Description description, double sigma);
+
+/// Probability that the navigator, judging which object entered its sliding window first from its
+/// own measurements of them (each off by sigma per axis), agrees that the trajectory's goal did. Only
+/// objects entering by the goal's edge soon after it matter: for them no error of the slide changes
+/// the order (trajectory_reliability), but one depth * rate deeper beyond the edge is taken for the
+/// first with probability Phi(-depth / (sqrt 2 sigma)). Independent, as view_agreement's flips.
+double entry_order_agreement(const WorldViews& views, const Trajectory& trajectory, double sigma);
 
 }  // namespace neopipe::nav::mapmaker

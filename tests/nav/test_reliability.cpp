@@ -8,6 +8,7 @@
 
 #include "nav/mapmaker/reliability_fit.hpp"
 #include "nav/mapmaker/trajectories.hpp"
+#include "nav/mapmaker/view_agreement.hpp"
 
 namespace neopipe::nav::mapmaker {
 namespace {
@@ -116,6 +117,29 @@ TEST(Reliability, TrajectoriesAreCertainWithoutErrorsAndLessSoWithMore) {
     }
     previous = mean;
   }
+}
+
+// w400's 391 -> 120 rebuilt: the reference held at NE sees one other object, which gives the
+// direction; sliding along it, the goal and a second marble enter by the window's bottom edge 0.03 mm
+// of depth apart. No offset or turn of the slide changes their order, but the navigator's own
+// measurements of the two do: the step must not be rated certain. Three millimetres apart it is.
+TEST(Reliability, TwoMarblesEnteringByTheSameEdgeAlmostTogetherAreACoinToss) {
+  const auto rate = [](double competitor_y) {
+    const Workspace w{{400, 400}, {{200, 200}, {171.6, 195.46}, {160.15, 150.88}, {187.3, competitor_y}, {330, 330}}};
+    const WorldViews views(w, WindowModel::with_side(50));
+    const auto t = trajectory_from(views, {0, Corner::NE}, Description::Obvious, Direction::positive);
+    EXPECT_TRUE(t.has_value());
+    if (!t) return -1.0;
+    EXPECT_EQ(t->to, 2U);  // the goal enters first
+    // The slide's geometry alone is sure of the order; the navigator's measurements are not.
+    EXPECT_GT(trajectory_reliability(views, *t, NavigatorErrors{0.2, 0.003, 0}), 0.99);
+    return entry_order_agreement(views, *t, 0.2);
+  };
+  const double close = rate(150.85);
+  const double apart = rate(147.85);
+  EXPECT_GT(close, 0.25);  // 0.03 mm of depth against sqrt(2) * 0.2 mm: about 0.54 less the lag's slant
+  EXPECT_LT(close, 0.7);
+  EXPECT_GT(apart, 0.95);
 }
 
 }  // namespace
