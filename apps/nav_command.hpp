@@ -15,7 +15,7 @@ struct NavArgs {
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
   /// A journey's job is to arrive: the most reliable path by default. The paper's compromise (ratio)
-  /// travels ~10% less and reaches the goal in 99.0-99.6% of journeys against 99.3-99.8% on five sets
+  /// travels ~10% less and reaches the goal in 99.0-99.6% of journeys against 99.7-100% on five sets
   /// of 1,000 (docs/navigation-experiments.md).
   std::string cost = "reliability";
   std::optional<double> sigma_map;  ///< none: the survey goes through the global camera and calibration
