@@ -322,7 +322,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "calibration (the default)");
   cmd->add_option("--sigma-move", a.sigma_move, "Arm's translation error, sd mm per mm moved")->capture_default_str();
   cmd->add_option("--sigma-rot", a.sigma_rot, "Arm's heading error, sd degrees per mm moved")->capture_default_str();
-  cmd->add_option("--seed", a.seed, "Seed of the map-maker's errors, the start/goal draws, arm errors, camera noise")
+  cmd->add_option(
+         "--seed", a.seed,
+         "Seed of the survey (its images' noise or Gaussian errors), the start/goal draws, arm errors, camera noise")
       ->capture_default_str();
   cmd->add_option("--trials", a.trials, "Run N journeys between random reachable pairs and print the outcome table");
   cmd->add_flag("--no-recovery", a.no_recovery, "Navigator ignores the map's recovery rules");
