@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <iterator>
 #include <stdexcept>
 #include <utility>
 
@@ -44,11 +43,11 @@ void BlobTableWriter::header() {
 }
 
 void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
-  // The table of a video costs as much CPU as a good part of the frame's processing: formats are
-  // compiled (FMT_COMPILE: no format string parsed per row) and rows go to a buffer reused from
-  // frame to frame. Each {} is the same fmt::detail::write as the runtime format's, so the text,
-  // doubles in their shortest round-trip form included, is unchanged (BlobTableWriter tests compare
-  // it character for character).
+  // On a video with hundreds of blobs a frame, formatting the table was an eighth of `neopipe run`'s CPU
+  // (docs/performance.md): formats are compiled (FMT_COMPILE: no format string parsed per row) and rows go to a
+  // buffer reused from frame to frame. Each {} is the same fmt::detail::write as the runtime format's, so the text,
+  // doubles in their shortest round-trip form included, is unchanged (BlobTableWriter tests compare it character
+  // for character).
   buffer_.clear();
   auto it = fmt::appender(buffer_);
   std::vector<cv::Point2d> world;
