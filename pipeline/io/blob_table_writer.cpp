@@ -1,5 +1,6 @@
 #include "pipeline/io/blob_table_writer.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <iterator>
 #include <stdexcept>
 #include <utility>
 
@@ -43,8 +43,13 @@ void BlobTableWriter::header() {
 }
 
 void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
+  // On a video with hundreds of blobs a frame, formatting the table was an eighth of `neopipe run`'s CPU
+  // (docs/performance.md): formats are compiled (FMT_COMPILE: no format string parsed per row) and rows go to a
+  // buffer reused from frame to frame. Each {} is the same fmt::detail::write as the runtime format's, so the text,
+  // doubles in their shortest round-trip form included, is unchanged (BlobTableWriter tests compare it character
+  // for character).
   buffer_.clear();
-  auto it = std::back_inserter(buffer_);
+  auto it = fmt::appender(buffer_);
   std::vector<cv::Point2d> world;
   if (options_.to_world) {
     std::vector<cv::Point2d> centres;
@@ -55,20 +60,21 @@ void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
   for (size_t i = 0; i < blobs.size(); ++i) {
     const auto& b = blobs[i];
     if (options_.format == TableFormat::csv) {
-      // {} prints a double in its shortest round-trip form.
-      fmt::format_to(it, "{},{},{},{},{},{},{},{},{},{},{}", frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width,
-                     b.height, b.wcx, b.wcy);
-      if (options_.moments) fmt::format_to(it, ",{},{},{}", b.mu20, b.mu11, b.mu02);
-      if (options_.to_world) fmt::format_to(it, ",{},{}", world[i].x, world[i].y);
-      buffer_ += '\n';
+      it = fmt::format_to(it, FMT_COMPILE("{},{},{},{},{},{},{},{},{},{},{}"), frame, i, b.area, b.cx, b.cy, b.x0, b.y0,
+                          b.width, b.height, b.wcx, b.wcy);
+      if (options_.moments) it = fmt::format_to(it, FMT_COMPILE(",{},{},{}"), b.mu20, b.mu11, b.mu02);
+      if (options_.to_world) it = fmt::format_to(it, FMT_COMPILE(",{},{}"), world[i].x, world[i].y);
+      *it++ = '\n';
     } else {
-      fmt::format_to(it,
-                     R"({{"frame":{},"blob":{},"area":{},"cx":{},"cy":{},"x0":{},"y0":{},"w":{},"h":{},)"
-                     R"("wcx":{},"wcy":{})",
-                     frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy);
-      if (options_.moments) fmt::format_to(it, R"(,"mu20":{},"mu11":{},"mu02":{})", b.mu20, b.mu11, b.mu02);
-      if (options_.to_world) fmt::format_to(it, R"(,"X":{},"Y":{})", world[i].x, world[i].y);
-      buffer_ += "}\n";
+      it = fmt::format_to(it,
+                          FMT_COMPILE(R"({{"frame":{},"blob":{},"area":{},"cx":{},"cy":{},"x0":{},"y0":{},"w":{},)"
+                                      R"("h":{},"wcx":{},"wcy":{})"),
+                          frame, i, b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy);
+      if (options_.moments) {
+        it = fmt::format_to(it, FMT_COMPILE(R"(,"mu20":{},"mu11":{},"mu02":{})"), b.mu20, b.mu11, b.mu02);
+      }
+      if (options_.to_world) it = fmt::format_to(it, FMT_COMPILE(R"(,"X":{},"Y":{})"), world[i].x, world[i].y);
+      it = fmt::format_to(it, FMT_COMPILE("}}\n"));
     }
   }
   out_->write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));

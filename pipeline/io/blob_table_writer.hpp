@@ -4,6 +4,8 @@
 // calibration, X,Y (workspace mm of wcx,wcy). Real numbers are
 // printed in the shortest form that reads back to the same double, so nothing is lost.
 
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -50,7 +52,7 @@ class BlobTableWriter {
   std::ostream* out_;
   TableOptions options_;
   std::string path_;
-  std::string buffer_;
+  fmt::memory_buffer buffer_;  ///< one frame's rows, written at once; keeps its capacity
   std::int64_t rows_ = 0;
 };
 
