@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <numbers>
-#include <opencv2/imgcodecs.hpp>
 #include <regex>
 #include <sstream>
 
@@ -20,6 +19,7 @@
 #include "calib/grid_labelling.hpp"
 #include "calib/points_csv.hpp"
 #include "calib/residual_plot.hpp"
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
 namespace {
@@ -102,12 +102,7 @@ void print_report(const calib::Calibration& c, const std::string& out) {
 cv::Mat read_image(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw calib::CalibrationError(path + ": no such image file");
-  cv::Mat img;
-  try {
-    img = cv::imread(path, cv::IMREAD_GRAYSCALE);
-  } catch (const cv::Exception&) {
-    img.release();
-  }
+  const cv::Mat img = pipeline::media::read_image(path, pipeline::media::ImageMode::gray);
   if (img.empty()) throw calib::CalibrationError(path + ": cannot be read as an image");
   return img;
 }

@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <vector>
 
 #include "nav/mapmaker/parkways.hpp"
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
 namespace {
@@ -229,7 +229,8 @@ void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& r
     if (!out) throw std::runtime_error(fmt::format("{}: cannot write the plot", path));
     return;
   }
-  if (!cv::imwrite(path, png(d))) throw std::runtime_error(fmt::format("{}: cannot write the plot", path));
+  if (!pipeline::media::write_image(path, png(d)))
+    throw std::runtime_error(fmt::format("{}: cannot write the plot", path));
 }
 
 }  // namespace neopipe::apps

@@ -5,9 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
 namespace {
@@ -231,12 +232,8 @@ void write_map_stats_plot(const std::vector<mm::StatisticsRow>& rows, const std:
         "population (objects)", "components")
       .draw({series_of(rows, reference, kIsolated, "parkways only", palette(3)),
              series_of(rows, reference, kWithTrajectories, "with trajectories", palette(2))});
-  try {
-    if (cv::imwrite(path, image)) return;
-  } catch (const cv::Exception&) {
-    // reported below in the same words as a false return
-  }
-  throw std::runtime_error(fmt::format("--plot {}: cannot write the PNG", path));
+  if (!pipeline::media::write_image(path, image))
+    throw std::runtime_error(fmt::format("--plot {}: cannot write the PNG", path));
 }
 
 }  // namespace neopipe::apps

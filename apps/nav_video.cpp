@@ -20,8 +20,8 @@ NavVideo::NavVideo(std::string path, double window_side, int side_px)
   if (!avi && !ends_with(path_, ".mp4") && !ends_with(path_, ".mkv")) {
     throw std::runtime_error(fmt::format("--video {}: the video must be a .mp4, .avi or .mkv file", path_));
   }
-  const int fourcc = avi ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-  if (!writer_.open(path_, fourcc, 30, cv::Size(side_px_, side_px_), true)) {
+  writer_ = pipeline::media::open_video_writer(path_, 30, cv::Size(side_px_, side_px_));
+  if (!writer_) {
     throw std::runtime_error(fmt::format("--video {}: cannot write a video there", path_));
   }
 }
@@ -53,14 +53,14 @@ void NavVideo::frame_seen(const pipeline::io::SourceFrame& frame, const nav::nav
   }
   cv::putText(bgr, fmt::format("frame {}", frame.index), {6, side_px_ - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
               cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-  writer_.write(bgr);
+  writer_->write(bgr);
   ++frames_;
   // A held mark belongs to the frame it was held in; later frames show the next look.
   held_.reset();
 }
 
 void NavVideo::close() {
-  writer_.release();
+  writer_.reset();  // finishes the file
   if (frames_ == 0) throw std::runtime_error(fmt::format("--video {}: the journey produced no frames", path_));
 }
 

@@ -2,11 +2,12 @@
 // `neopipe nav --video`: the onboard view as the navigator saw it, each blob it found circled and
 // the landmark it holds marked, one video frame per camera frame.
 
-#include <opencv2/videoio.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "nav/navigator/navigator.hpp"
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
 
@@ -25,7 +26,7 @@ class NavVideo final : public nav::navigator::Observer {
   std::string path_;
   double side_;
   int side_px_;
-  cv::VideoWriter writer_;
+  std::unique_ptr<pipeline::media::VideoWriter> writer_;
   std::optional<Eigen::Vector2d> held_;  ///< the last landmark held, drawn until the next move shows
   std::size_t entry_ = 0;
   std::int64_t frames_ = 0;

@@ -9,13 +9,12 @@
 #include <iostream>
 #include <numbers>
 #include <opencv2/core/persistence.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 #include <sstream>
 
 #include "apps/cli_support.hpp"
 #include "apps/progress.hpp"
+#include "pipeline/media/media.hpp"
 #include "sim/cameras.hpp"
 #include "sim/marble_renderer.hpp"
 #include "sim/rolling_marbles.hpp"
@@ -169,13 +168,8 @@ void write_camera(const sim::PinholeCamera& camera, const std::string& path) {
 }
 
 void write_image(const std::string& path, const cv::Mat& image) {
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, image);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw std::runtime_error(path + ": cannot write an image there (use .png, .jpg, .tif or .bmp)");
+  if (!pipeline::media::write_image(path, image))
+    throw std::runtime_error(path + ": cannot write an image there (use .png, .jpg, .tif or .bmp)");
 }
 
 std::pair<sim::CalibrationTarget, sim::TargetPose> parse_target(const SimRenderArgs& a) {
@@ -306,11 +300,8 @@ int sim_video_command(const SimVideoArgs& a) {
 
   sim::RollingMarbles rolling(world, onboard ? 0.0 : a.speed, a.cam.seed);
 
-  const std::string ext = std::filesystem::path(a.cam.out).extension().string();
-  const int fourcc =
-      ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-  cv::VideoWriter writer;
-  if (!writer.open(a.cam.out, cv::CAP_FFMPEG, fourcc, a.fps, fixed.size(), true)) {
+  const auto writer = pipeline::media::open_video_writer(a.cam.out, a.fps, fixed.size());
+  if (!writer) {
     throw std::runtime_error(a.cam.out + ": cannot write a video there (use .mp4, .avi or .mkv)");
   }
   std::ofstream truth;
@@ -326,7 +317,7 @@ int sim_video_command(const SimVideoArgs& a) {
     const auto& marbles = rolling.positions();
     const cv::Mat frame = renderer.render(marbles, world.marble_diameter, camera, f);
     cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
-    writer.write(bgr);
+    writer->write(bgr);
     if (truth.is_open()) write_truth_rows(truth, sim::visible_marbles(marbles, camera), f);
     rolling.step(1 / a.fps);
     bar.update(f + 1);

@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::calib {
 namespace {
@@ -91,13 +92,8 @@ void write_residual_plot(const Correspondences& points, const std::vector<Eigen:
   const cv::Point2d s0(kSize - kMargin - ref * magnify * px_per_mm, kSize - 25);
   cv::arrowedLine(img, s0, {kSize - kMargin, kSize - 25}, kArrow, 2, cv::LINE_AA, 0, 0.2);
   text(img, fmt::format("{:g} mm error", ref), {static_cast<int>(s0.x) - 110, kSize - 20}, 0.45);
-  bool ok = false;
-  try {
-    ok = cv::imwrite(path, img);
-  } catch (const cv::Exception&) {
-    ok = false;
-  }
-  if (!ok) throw CalibrationError(path + ": cannot write the residual plot (use .png)");
+  if (!pipeline::media::write_image(path, img))
+    throw CalibrationError(path + ": cannot write the residual plot (use .png)");
 }
 
 }  // namespace neopipe::calib

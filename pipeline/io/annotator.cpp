@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "pipeline/io/frame_source.hpp"
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::pipeline::io {
 namespace fs = std::filesystem;
@@ -57,22 +57,18 @@ void Annotator::write(std::int64_t frame, const cv::Mat& input, const BlobList& 
       target =
           (p.parent_path() / fmt::format("{}_{:06d}{}", p.stem().string(), frame, p.extension().string())).string();
     }
-    if (!cv::imwrite(target, img)) throw std::runtime_error(target + ": cannot write the annotated image");
+    if (!media::write_image(target, img)) throw std::runtime_error(target + ": cannot write the annotated image");
     return;
   }
-  if (!writer_.isOpened()) {
-    const std::string ext = fs::path(path_).extension().string();
-    const int fourcc =
-        ext == ".avi" ? cv::VideoWriter::fourcc('M', 'J', 'P', 'G') : cv::VideoWriter::fourcc('m', 'p', '4', 'v');
-    if (!writer_.open(path_, cv::CAP_FFMPEG, fourcc, fps_, img.size(), true)) {
-      throw std::runtime_error(path_ + ": cannot create the annotated video");
-    }
+  if (!writer_) {
+    writer_ = media::open_video_writer(path_, fps_, img.size());
+    if (!writer_) throw std::runtime_error(path_ + ": cannot create the annotated video");
   }
-  writer_.write(img);
+  writer_->write(img);
 }
 
 void Annotator::close() {
-  if (writer_.isOpened()) writer_.release();
+  writer_.reset();
 }
 
 }  // namespace neopipe::pipeline::io

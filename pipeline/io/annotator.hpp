@@ -3,9 +3,11 @@
 // the input frame and writes the result as a video or as PNG/JPEG images.
 
 #include <cstdint>
-#include <opencv2/videoio.hpp>
+#include <memory>
+#include <opencv2/core/mat.hpp>
 #include <string>
 
+#include "pipeline/media/media.hpp"
 #include "pipeline/value.hpp"
 
 namespace neopipe::pipeline::io {
@@ -26,7 +28,7 @@ class Annotator {
   double fps_;
   bool single_frame_;
   bool video_;
-  cv::VideoWriter writer_;
+  std::unique_ptr<media::VideoWriter> writer_;
 };
 
 /// The annotated picture itself.

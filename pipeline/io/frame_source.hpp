@@ -47,4 +47,8 @@ std::unique_ptr<FrameSource> open_frame_source(const std::vector<std::string>& i
 /// True for the file name extensions neopipe treats as images when scanning a directory.
 bool has_image_extension(const std::string& path);
 
+/// Whether open_frame_source reads the regular file `path` as an image (else as a video): by its
+/// signature, as cv::haveImageReader decides, but without loading OpenCV's codecs for a video.
+bool is_image_file(const std::string& path);
+
 }  // namespace neopipe::pipeline::io

@@ -1,9 +1,9 @@
 #include "pipeline/io/image_sequence_source.hpp"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "pipeline/io/files.hpp"
+#include "pipeline/media/media.hpp"
 
 namespace neopipe::pipeline::io {
 
@@ -16,7 +16,7 @@ std::optional<SourceFrame> ImageSequenceSource::next() {
   require_readable(path);
   // Always decoded to BGR: IMREAD_GRAYSCALE would use each codec's own luma arithmetic, and gray
   // frames must be BT.601 exactly as cv::cvtColor (and the video source, and the gray kernel) make them.
-  cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
+  cv::Mat img = media::read_image(path, media::ImageMode::color);
   if (img.empty()) throw SourceError(path + ": not an image OpenCV can read (unknown format or corrupt file)");
   if (format_ == ColorFormat::gray) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (first_size_.area() == 0) {

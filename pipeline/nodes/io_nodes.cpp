@@ -1,8 +1,8 @@
 // Nodes that bring images into the graph: the frame source and a constant image from a file.
 
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "pipeline/media/media.hpp"
 #include "pipeline/nodes/nodes.hpp"
 
 namespace neopipe::pipeline::nodes {
@@ -54,8 +54,8 @@ void register_io_nodes(KernelRegistry& r) {
            const PortType format = format_param(c.params, "gray");
            std::filesystem::path file(*path);
            if (file.is_relative()) file = c.base_dir / file;
-           const cv::Mat img =
-               cv::imread(file.string(), format == PortType::bgr8 ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
+           const cv::Mat img = media::read_image(
+               file.string(), format == PortType::bgr8 ? media::ImageMode::color : media::ImageMode::gray);
            if (img.empty()) c.params.fail("path", "cannot read '" + file.string() + "' as an image");
            return std::make_unique<ImageNode>(img, format, file.string());
          }});

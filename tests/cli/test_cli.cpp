@@ -762,6 +762,28 @@ TEST_F(Cli, TruncatedVideoFailsAfterWritingTheDecodedFrames) {
   EXPECT_EQ(s->processed, decoded);
 }
 
+// OpenCV's imgcodecs and videoio (and the ~240 libraries they bring) live in the media plug-in,
+// loaded only by what reads or writes images or writes videos (pipeline/media/media.hpp).
+TEST_F(Cli, VideoRunLoadsNoOpenCvCodecsAnImageRunDoes) {
+  // The dynamic loader names every library it loads on stderr.
+  ASSERT_EQ(setenv("LD_DEBUG", "files", 1), 0);
+  const RunResult video = run_neopipe({"run", mkv.string(), "-q", "--out", (dir / "v.csv").string()});
+  const RunResult image = run_neopipe({"run", png(0), "-q", "--out", (dir / "i.csv").string()});
+  unsetenv("LD_DEBUG");
+  ASSERT_EQ(video.exit_code, 0) << video.err.substr(0, 2000);
+  ASSERT_EQ(image.exit_code, 0) << image.err.substr(0, 2000);
+  EXPECT_TRUE(contains(video.err, "libavcodec")) << "LD_DEBUG=files printed no library names";
+  for (const char* lib : {"libneopipe_media", "libopencv_imgcodecs", "libopencv_videoio"}) {
+    EXPECT_FALSE(contains(video.err, lib)) << lib << " loaded for a video run";
+    EXPECT_TRUE(contains(image.err, lib)) << lib << " not loaded for an image run";
+  }
+  for (const char* table : {"v.csv", "i.csv"}) {
+    const auto lines = split_lines(slurp(dir / table));
+    ASSERT_GT(lines.size(), 1U) << table;
+    EXPECT_EQ(lines.front(), kHeader) << table;
+  }
+}
+
 TEST_F(Cli, ImageOfAnotherSizeMidSequenceFailsAfterWritingTheFirstFrames) {
   const fs::path seq = dir / "seq";
   fs::create_directory(seq);
