@@ -98,10 +98,10 @@ TEST_F(Media, SignatureAgreesWithOpenCvOnEveryFormatItWrites) {
 TEST_F(Media, SignatureAgreesWithOpenCvOnFilesThatAreNotImages) {
   write_bytes("text.png", "not an image\n");
   write_bytes("empty", "");
-  write_bytes("P7", "P7");                            // too short to be Netpbm
-  write_bytes("P8", "P8\n1 1\n");                     // no such Netpbm kind
-  write_bytes("RIFF.avi", "RIFF\x10\0\0\0AVI LIST");  // a RIFF that is not WebP
-  write_bytes("II", std::string("II\x2a", 3));
+  write_bytes("P7", "P7");                                             // too short to be Netpbm
+  write_bytes("P8", "P8\n1 1\n");                                      // no such Netpbm kind
+  write_bytes("RIFF.avi", std::string("RIFF\x10\0\0\0AVI LIST", 16));  // a RIFF that is not WebP
+  write_bytes("II", "II*");                                            // TIFF wants a fourth byte, 0
   std::string noise(4096, '\0');
   cv::RNG rng(3);
   for (auto& c : noise) c = static_cast<char>(rng.uniform(0, 256));
