@@ -253,8 +253,9 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       "--video FILE: cv decode f/s = the file read by cv::VideoCapture into BGR frames and nothing else (the\n"
       "decode-only reference); decode f/s = the same with neopipe's video reader, in the format the graph reads\n"
       "(gray: the decoder's luma plane); run f/s = `neopipe run FILE`'s default graph (gray -> Otsu threshold ->\n"
-      "blobs) through the engine, results discarded; run/cv decode and run/decode = their ratios (1.00x: the\n"
-      "run is as fast as decoding alone). The three run interleaved. Without --case or --sweep, --video\n"
+      "blobs) through the engine, results discarded; run+csv f/s = the same writing its CSV blob table (to\n"
+      "nowhere: the formatting without a disk); run/cv decode, run+csv/cv decode and run/decode = their ratios\n"
+      "(1.00x: as fast as decoding alone). The four run interleaved. Without --case or --sweep, --video\n"
       "measures only the video.\n"
       "--json prints one JSON object instead of the tables: {\"records\": [...], \"peak_rss_mib\": ..., ...}\n"
       "(docs/formats.md). A mismatch, a missing or undecodable video exit 1; a bad command line exits 2.");
@@ -332,13 +333,15 @@ int bench_command(const BenchArgs& a) {
   if (video) {
     if (!a.json) {
       if (!plan.points.empty()) fmt::print("\n");
-      fmt::print("video {}: {}, {} frames{}; `neopipe run`'s default graph, results discarded\n", video->path,
-                 size_text(video->size), video->frames ? std::to_string(*video->frames) : std::string("?"),
+      fmt::print("video {}: {}, {} frames{}; `neopipe run`'s default graph\n", video->path, size_text(video->size),
+                 video->frames ? std::to_string(*video->frames) : std::string("?"),
                  video->fps > 0 ? fmt::format(" at {:.4g} f/s", video->fps) : std::string());
-      fmt::print("cv decode: cv::VideoCapture reading BGR; decode: neopipe's reader, {} frames\n",
-                 video_format == pipeline::io::ColorFormat::gray ? "gray" : "BGR");
-      fmt::print("{:>7} {:>14} {:>11} {:>11} {:>13} {:>10}\n", "threads", "cv decode f/s", "decode f/s", "run f/s",
-                 "run/cv decode", "run/decode");
+      fmt::print(
+          "cv decode: cv::VideoCapture reading BGR; decode: neopipe's reader, {} frames; run: results discarded;\n"
+          "run+csv: the CSV blob table formatted too, as `neopipe run --out t.csv` writes it\n",
+          video_format == pipeline::io::ColorFormat::gray ? "gray" : "BGR");
+      fmt::print("{:>7} {:>14} {:>11} {:>11} {:>12} {:>13} {:>17} {:>10}\n", "threads", "cv decode f/s", "decode f/s",
+                 "run f/s", "run+csv f/s", "run/cv decode", "run+csv/cv decode", "run/decode");
       std::fflush(stdout);
     }
     for (const int t : plan.threads) {
@@ -350,8 +353,9 @@ int bench_command(const BenchArgs& a) {
       }
       if (!a.json) {
         bar.clear();
-        fmt::print("{:>7} {:>14.1f} {:>11.1f} {:>11.1f} {:>13} {:>10}\n", t, fps["opencv_decode"], fps["decode"],
-                   fps["run"], ratio(fps["run"], fps["opencv_decode"]), ratio(fps["run"], fps["decode"]));
+        fmt::print("{:>7} {:>14.1f} {:>11.1f} {:>11.1f} {:>12.1f} {:>13} {:>17} {:>10}\n", t, fps["opencv_decode"],
+                   fps["decode"], fps["run"], fps["run_csv"], ratio(fps["run"], fps["opencv_decode"]),
+                   ratio(fps["run_csv"], fps["opencv_decode"]), ratio(fps["run"], fps["decode"]));
         std::fflush(stdout);
       }
     }

@@ -29,7 +29,7 @@ struct VideoInfo {
 VideoInfo probe_video(const std::string& path, pipeline::io::ColorFormat format);
 
 struct VideoRecord {
-  std::string impl;  ///< "opencv_decode", "decode" or "run"
+  std::string impl;  ///< "opencv_decode", "decode", "run" or "run_csv"
   int threads = 0;
   double fps = 0;  ///< median over the repeats
 };
@@ -38,7 +38,9 @@ struct VideoRecord {
 ///   opencv_decode: cv::VideoCapture(path, CAP_FFMPEG).read() into BGR frames, nothing else;
 ///   decode:        neopipe's frame source (pipeline::io::open_frame_source) in `format`, nothing else;
 ///   run:           pipeline::run_stream of `graph` on a fresh source with `threads` workers, in batch
-///                  mode, the results discarded.
+///                  mode, the results discarded;
+///   run_csv:       the same, with the blob table formatted as CSV as `neopipe run` writes it (the
+///                  bytes are discarded, not a disk's speed): what `neopipe run FILE --out t.csv` costs.
 /// Each timed run goes through the file again as often as it takes to last o.min_seconds, and in a
 /// long file stops early once they have passed. Opening the file is timed, compiling the graph not.
 std::vector<VideoRecord> run_video_bench(const std::string& path, const pipeline::GraphSpec& graph,

@@ -1194,8 +1194,9 @@ TEST_F(Cli, BenchVideoReportsDecodeOnlyAndRunRates) {
   const RunResult r = run_bench({"--video", avi.string(), "--threads", "1", "--json"});
   ASSERT_TRUE(succeeded(r));
   const json records = bench_records(r);
-  // --video alone measures only the video: cv::VideoCapture, neopipe's reader, and the run.
-  ASSERT_EQ(records.size(), 3u) << r.out;
+  // --video alone measures only the video: cv::VideoCapture, neopipe's reader, and the run without and
+  // with its CSV table.
+  ASSERT_EQ(records.size(), 4u) << r.out;
   std::set<std::string> impls;
   for (const auto& rec : records) {
     EXPECT_EQ(rec["case"], "video");
@@ -1207,12 +1208,13 @@ TEST_F(Cli, BenchVideoReportsDecodeOnlyAndRunRates) {
     EXPECT_GT(rec["fps"].get<double>(), 0);
     impls.insert(rec["impl"].get<std::string>());
   }
-  EXPECT_EQ(impls, (std::set<std::string>{"opencv_decode", "decode", "run"}));
+  EXPECT_EQ(impls, (std::set<std::string>{"opencv_decode", "decode", "run", "run_csv"}));
 
   const RunResult t = run_bench({"--video", avi.string(), "--threads", "1"});
   ASSERT_TRUE(succeeded(t));
   EXPECT_TRUE(contains(t.out, "cv decode f/s") && contains(t.out, " decode f/s") && contains(t.out, "run f/s") &&
-              contains(t.out, "run/cv decode") && contains(t.out, "run/decode"))
+              contains(t.out, "run/cv decode") && contains(t.out, "run/decode") && contains(t.out, "run+csv f/s") &&
+              contains(t.out, "run+csv/cv decode"))
       << t.out;
   EXPECT_FALSE(contains(t.out, "vs opencv")) << "no synthetic cases without --case:\n" << t.out;
 }
