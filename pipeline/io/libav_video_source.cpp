@@ -79,6 +79,17 @@ int display_rotation(const AVStream& stream) {
 
 }  // namespace
 
+// Frame threading (MPEG-4, H.264, HEVC, ...) decodes one frame per thread, and each frame thread
+// holds a picture and a decoder context of its own: for 1080p MPEG-4, 6.3 MiB of resident memory
+// per thread beyond the first (about 4x that at 4K). On one or two cores neopipe's workers keep
+// the cores busy already, and a second decoder thread did not make `neopipe run` faster; it only
+// cost that memory (docs/video-measurements.md, "Anonymous memory", 2026-12-02). With more cores,
+// frame threads let the one reader thread decode as fast as the workers process, so there it is
+// OpenCV's choice: one thread per core, at most 16 (FFmpeg warns above that).
+int decoder_threads(int cores) {
+  return cores <= 2 ? 1 : std::min(cores, 16);
+}
+
 struct LibavVideoSource::Impl {
   std::string path;
   libav::FrameConverter converter;
@@ -126,9 +137,8 @@ LibavVideoSource::Impl::Impl(std::string p, ColorFormat format_wanted) : path(st
   r = avcodec_parameters_to_context(codec.get(), st.codecpar);
   if (r < 0)
     fail("cannot set up the " + std::string(decoder->name) + " decoder (FFmpeg: " + libav::error_text(r) + ")");
-  // As OpenCV does: one decoder thread per CPU, at most 16 (FFmpeg warns above that). Frame and
-  // slice threading are FFmpeg's defaults.
-  codec->thread_count = std::min(cv::getNumberOfCPUs(), 16);
+  // Frame and slice threading are FFmpeg's defaults (see decoder_threads for the count).
+  codec->thread_count = decoder_threads(cv::getNumberOfCPUs());
   r = avcodec_open2(codec.get(), decoder, nullptr);
   if (r < 0) fail("cannot open the " + std::string(decoder->name) + " decoder (FFmpeg: " + libav::error_text(r) + ")");
   read_container_facts();

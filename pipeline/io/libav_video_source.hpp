@@ -5,8 +5,9 @@
 //
 // Behaves as cv::VideoCapture(path, CAP_FFMPEG) in what it reads: the first video stream (cover
 // pictures skipped), the same frames in the same order, the frame rate and frame count it reports,
-// decoder threads one per CPU (up to 16), frames turned as the file's display matrix says (the way
-// FFmpeg's tools turn them; OpenCV 4.6 turns 90 and 270 degree videos the other way round).
+// frames turned as the file's display matrix says (the way FFmpeg's tools turn them; OpenCV 4.6
+// turns 90 and 270 degree videos the other way round). Its decoder threads differ on small machines
+// only (decoder_threads).
 //
 // FFmpeg's own log lines are off; set NEOPIPE_FFMPEG_LOGLEVEL to an FFmpeg level (quiet, panic,
 // fatal, error, warning, info, verbose, debug, trace, or its number) to see them on stderr.
@@ -17,6 +18,11 @@
 #include "pipeline/io/frame_source.hpp"
 
 namespace neopipe::pipeline::io {
+
+/// FFmpeg decoder threads for a machine with `cores` hardware threads: one per core, at most 16, as
+/// cv::VideoCapture sets it; but 1 on one or two cores, where FFmpeg's frame threads cost a decoded
+/// picture each and gain the run nothing (see the definition).
+int decoder_threads(int cores);
 
 class LibavVideoSource final : public FrameSource {
  public:

@@ -10,7 +10,8 @@
 // from limited range) against cv::cvtColor(BGR2GRAY) of cv::VideoCapture's BGR within measured
 // tolerances (see Tolerance). Also: a full-range flag on yuv420p is honoured (where the reader
 // parts from cv::VideoCapture on purpose), a display matrix turns the frames, every frame is
-// freshly allocated, a truncated video and a text file named .mp4 are SourceErrors naming the file.
+// freshly allocated, the decoder thread count; a truncated video and a text file named .mp4 are
+// SourceErrors naming the file.
 
 #include <gtest/gtest.h>
 
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "pipeline/io/frame_source.hpp"
+#include "pipeline/io/libav_video_source.hpp"
 #include "pipeline_test_support.hpp"
 
 namespace io = neopipe::pipeline::io;
@@ -309,6 +311,17 @@ TEST(LibavVideoSource, EveryFrameIsFreshlyAllocated) {
       }
     }
   }
+}
+
+// One decoder thread on one or two cores (each FFmpeg frame thread holds a decoded picture and
+// gains the run nothing there), else one per core up to FFmpeg's 16, as cv::VideoCapture.
+TEST(LibavVideoSource, DecoderThreadsAreOnePerCoreExceptOnSmallMachines) {
+  EXPECT_EQ(io::decoder_threads(1), 1);
+  EXPECT_EQ(io::decoder_threads(2), 1);
+  EXPECT_EQ(io::decoder_threads(3), 3);
+  EXPECT_EQ(io::decoder_threads(8), 8);
+  EXPECT_EQ(io::decoder_threads(16), 16);
+  EXPECT_EQ(io::decoder_threads(64), 16);
 }
 
 TEST(LibavVideoSource, TruncatedVideoIsASourceErrorNamingTheFile) {
