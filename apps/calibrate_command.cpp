@@ -102,7 +102,7 @@ void print_report(const calib::Calibration& c, const std::string& out) {
 cv::Mat read_image(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw calib::CalibrationError(path + ": no such image file");
-  const cv::Mat img = pipeline::media::read_image(path, pipeline::media::ImageMode::gray);
+  cv::Mat img = pipeline::media::read_image(path, pipeline::media::ImageMode::gray);
   if (img.empty()) throw calib::CalibrationError(path + ": cannot be read as an image");
   return img;
 }

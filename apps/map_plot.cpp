@@ -77,7 +77,7 @@ Drawing draw(const mm::MapMaker& maker, const std::optional<mm::Route>& route, c
   d.scale = std::clamp(900.0 / std::max(d.size.x(), d.size.y()), 0.02, 20.0);
   d.boxes.push_back({{0, 0}, d.size, kBorder, 1});
   for (const mm::Trajectory& t : maker.steps().trajectories()) {
-    const Vector2d a = views.position(t.from.object);
+    const Vector2d& a = views.position(t.from.object);
     d.lines.push_back({a, views.position(t.to), kTrajectory, 0.6, true});
   }
   for (const mm::ParkwayEdge& e : mm::isolated_parkway(views)) {

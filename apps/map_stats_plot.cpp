@@ -177,7 +177,7 @@ class Panel {
 };
 
 Series series_of(const std::vector<mm::StatisticsRow>& rows, double window, std::size_t field, std::string label,
-                 cv::Scalar colour) {
+                 const cv::Scalar& colour) {
   Series s{std::move(label), colour, false, true, {}};
   for (const mm::StatisticsRow& r : rows) {
     if (r.window.side != window) continue;
@@ -187,7 +187,8 @@ Series series_of(const std::vector<mm::StatisticsRow>& rows, double window, std:
   return s;
 }
 
-Series poisson_of(const std::vector<mm::StatisticsRow>& rows, double window, std::string label, cv::Scalar colour) {
+Series poisson_of(const std::vector<mm::StatisticsRow>& rows, double window, std::string label,
+                  const cv::Scalar& colour) {
   Series s{std::move(label), colour, true, false, {}};
   for (const mm::StatisticsRow& r : rows) {
     if (r.window.side != window) continue;
