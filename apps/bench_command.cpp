@@ -255,8 +255,9 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       "(gray: the decoder's luma plane); run f/s = `neopipe run FILE`'s default graph (gray -> Otsu threshold ->\n"
       "blobs) through the engine, results discarded; run+csv f/s = the same writing its CSV blob table (to\n"
       "nowhere: the formatting without a disk); run/cv decode, run+csv/cv decode and run/decode = their ratios\n"
-      "(1.00x: as fast as decoding alone). The four run interleaved. Without --case or --sweep, --video\n"
-      "measures only the video.\n"
+      "(1.00x: as fast as decoding alone). The four run interleaved; a note says when the timed runs were\n"
+      "shorter than the video (its first frames only) and which --min-time covers it. Without --case or\n"
+      "--sweep, --video measures only the video.\n"
       "--json prints one JSON object instead of the tables: {\"records\": [...], \"peak_rss_mib\": ..., ...}\n"
       "(docs/formats.md). A mismatch, a missing or undecodable video exit 1; a bad command line exits 2.");
   cmd->add_option("--size", a.sizes, "Frame size(s) (default: 256x256 640x480 1920x1080)")->type_name("WxH");
@@ -330,6 +331,7 @@ int bench_command(const BenchArgs& a) {
   }
   if (!a.json) print_scaling(rows);
 
+  std::vector<std::string> video_notes;
   if (video) {
     if (!a.json) {
       if (!plan.points.empty()) fmt::print("\n");
@@ -344,11 +346,13 @@ int bench_command(const BenchArgs& a) {
                  "run f/s", "run+csv f/s", "run/cv decode", "run+csv/cv decode", "run/decode");
       std::fflush(stdout);
     }
+    double slowest = 0;  // f/s of the slowest implementation at any thread count
     for (const int t : plan.threads) {
       bar.update(done++, fmt::format("video {} threads", t));
       std::map<std::string, double> fps;
       for (const auto& r : bench::run_video_bench(video->path, video_graph, video_format, t, o)) {
         fps[r.impl] = r.fps;
+        if (r.fps > 0 && (slowest == 0 || r.fps < slowest)) slowest = r.fps;
         records.push_back(video_json(r, *video));
       }
       if (!a.json) {
@@ -358,6 +362,17 @@ int bench_command(const BenchArgs& a) {
                    ratio(fps["run_csv"], fps["opencv_decode"]), ratio(fps["run"], fps["decode"]));
         std::fflush(stdout);
       }
+    }
+    // A timed run that ends before the video does measures its first frames only, with opening the
+    // file and starting the threads in every timing: noisier, and not the whole file's rate.
+    if (video->frames && slowest > 0 && static_cast<double>(*video->frames) / slowest > o.min_seconds) {
+      const double pass = static_cast<double>(*video->frames) / slowest;
+      std::string note = fmt::format(
+          "the timed runs covered about the first {} of the video's {} frames; --min-time {:.1f} would make each "
+          "a whole pass",
+          static_cast<std::int64_t>(slowest * o.min_seconds), *video->frames, std::ceil(pass * 12) / 10);
+      if (!a.json) fmt::print("note: {}\n", note);
+      video_notes.push_back(std::move(note));
     }
   }
   bar.clear();
@@ -369,12 +384,14 @@ int bench_command(const BenchArgs& a) {
     // Built before the object, not inside its initializer list, where GCC 12 warns of a
     // maybe-uninitialized optional (a false positive of its inlining).
     const json peak_json = nullable(peak_mib);
+    std::vector<std::string> notes = plan.notes;
+    notes.insert(notes.end(), video_notes.begin(), video_notes.end());
     const json out{{"opencv_version", CV_VERSION},
                    {"hardware_threads", all},
                    {"repeats", o.repeats},
                    {"min_time_s", o.min_seconds},
                    {"peak_rss_mib", peak_json},
-                   {"notes", plan.notes},
+                   {"notes", notes},
                    {"records", records}};
     std::cout << out.dump(2) << '\n';
   } else {

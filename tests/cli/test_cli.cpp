@@ -1219,6 +1219,27 @@ TEST_F(Cli, BenchVideoReportsDecodeOnlyAndRunRates) {
   EXPECT_FALSE(contains(t.out, "vs opencv")) << "no synthetic cases without --case:\n" << t.out;
 }
 
+// A timed run shorter than the video measures its first frames only; the bench says so, with the
+// --min-time that makes each run a whole pass, and says nothing when every run was one.
+TEST_F(Cli, BenchVideoNotesTimedRunsShorterThanTheVideo) {
+  const RunResult whole = run_neopipe(
+      {"bench", "--video", avi.string(), "--threads", "1", "--repeats", "1", "--min-time", "0.5", "--json"});
+  ASSERT_TRUE(succeeded(whole));
+  EXPECT_TRUE(json::parse(whole.out)["notes"].empty()) << whole.out;
+
+  const std::string vtest = "/usr/share/doc/opencv-doc/examples/data/vtest.avi";  // 795 frames
+  if (!fs::exists(vtest)) GTEST_SKIP() << vtest << " not installed";
+  const RunResult part = run_bench({"--video", vtest, "--threads", "1", "--json"});  // 0.01 s runs
+  ASSERT_TRUE(succeeded(part));
+  const json notes = json::parse(part.out)["notes"];
+  ASSERT_EQ(notes.size(), 1U) << part.out;
+  const std::string note = notes[0].get<std::string>();
+  EXPECT_TRUE(contains(note, "795 frames") && contains(note, "--min-time")) << note;
+  const RunResult text = run_bench({"--video", vtest, "--threads", "1"});
+  ASSERT_TRUE(succeeded(text));
+  EXPECT_TRUE(contains(text.out, "note: the timed runs covered about the first")) << text.out;
+}
+
 TEST_F(Cli, BenchVideoWithACaseMeasuresBoth) {
   const RunResult r =
       run_bench({"--video", avi.string(), "--case", "dots", "--size", "64x64", "--threads", "1", "--json"});
