@@ -75,13 +75,6 @@ class DiscardingBuffer final : public std::streambuf {
   int_type overflow(int_type c) override { return traits_type::not_eof(c); }
 };
 
-const pipeline::BlobList* first_blob_list(const pipeline::FrameResult& r) {
-  for (const auto& out : r.outputs) {
-    if (const auto* blobs = std::get_if<pipeline::BlobList>(&out)) return blobs;
-  }
-  return nullptr;
-}
-
 double time_run(const std::string& path, const pipeline::GraphSpec& graph, io::ColorFormat format, int threads,
                 double min_seconds, bool write_table) {
   DiscardingBuffer discard;
@@ -94,6 +87,7 @@ double time_run(const std::string& path, const pipeline::GraphSpec& graph, io::C
   so.stop = &stop;
   while (seconds < min_seconds) {
     pipeline::CompiledGraph compiled = pipeline::compile(graph, pipeline::standard_kernels());
+    const std::optional<size_t> blob_output = compiled.find_output(pipeline::PortType::blobs);  // as `run` finds it
     const auto t0 = Clock::now();
     const auto source = io::open_frame_source({path}, format);
     pipeline::RunStats stats;
@@ -103,9 +97,7 @@ double time_run(const std::string& path, const pipeline::GraphSpec& graph, io::C
     pipeline::run_stream(
         *source, std::move(compiled), so,
         [&](const pipeline::FrameResult& r) {
-          if (table) {
-            if (const auto* blobs = first_blob_list(r)) table->write(r.index, *blobs);
-          }
+          if (table && blob_output) table->write(r.index, std::get<pipeline::BlobList>(r.outputs[*blob_output]));
           ++frames;
           if (before + seconds_since(t0) >= min_seconds) stop = true;
         },
