@@ -9,12 +9,14 @@
 
 #include "apps/cli_support.hpp"
 #include "apps/map_plot.hpp"
-#include "apps/nav_harness.hpp"
-#include "apps/nav_survey.hpp"
-#include "apps/nav_trials.hpp"
 #include "apps/nav_video.hpp"
 #include "apps/progress.hpp"
 #include "nav/mapmaker/map_maker.hpp"
+#include "rig/experiment.hpp"
+#include "rig/journey.hpp"
+#include "rig/park_kender.hpp"
+#include "rig/survey.hpp"
+#include "rig/trials.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::apps {
@@ -29,27 +31,10 @@ void check_non_negative(const char* option, double value, const char* unit) {
     throw UsageError{fmt::format("{} {}: must be >= 0 {}", option, value, unit)};
 }
 
-std::string_view ending_name(nv::Ending e) {
-  switch (e) {
-    case nv::Ending::arrived:
-      return "arrived";
-    case nv::Ending::lost:
-      return "lost";
-    case nv::Ending::unrecoverable:
-      return "unrecoverable";
-  }
-  return "?";
-}
-
-// mm: how far the navigator may misjudge a marble cut by its image border (its centre from the cap)
-// and the turn it has not measured, at the far side of its window.
-constexpr double kNavigatorBorderError = 0.25;
-
 struct Setup {
   sim::World world;
-  Survey survey;
-  mm::MapMakerOptions options;
-  JourneySettings settings;
+  rig::Survey survey;
+  rig::ExperimentSettings settings;
 };
 
 Setup make_setup(const NavArgs& a) {
@@ -68,35 +53,22 @@ Setup make_setup(const NavArgs& a) {
     throw mm::MapError(
         fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
   }
-  s.survey = a.sigma_map ? gaussian_survey(s.world, *a.sigma_map, a.seed) : global_camera_survey(s.world, a.seed);
-  s.options.window = nav::WindowModel::with_side(a.window);
-  // The map-maker rates its steps with the errors the navigator really meets: the survey's position
-  // error (as the calibration states it, not as the truth would) and the navigator's own placement
-  // of its window, which holds a landmark only to within its adjust tolerance (taken as two sd).
-  // Without the second an exact survey makes every step look certain and the plan takes borderline
-  // ones (docs/navigation-experiments.md, sensor accuracy).
-  s.options.errors.sigma = std::hypot(s.survey.sigma, nav::navigator::NavigatorConfig{}.adjust_tolerance / 2);
-  // Where the survey and the world may disagree about which side of a border an object lies: 3 sd
-  // of two objects' relative survey error, plus the navigator's own error on marbles the image border
-  // cuts. The map-maker keeps its verification and recovery rules clear of that band; the navigator
-  // uses the same band to explain a QOC or a view that differs from the map's.
-  const double border_band = 3 * std::sqrt(2.0) * s.survey.sigma + kNavigatorBorderError;
-  s.options.border_tolerance = border_band;
-  s.settings.navigator.view_margin = border_band;
-  s.options.errors.translation_per_mm = a.sigma_move;
-  s.options.errors.rotation_per_mm = a.sigma_rot * std::numbers::pi / 180;
-  s.settings.errors = {a.sigma_move, a.sigma_rot};
-  s.settings.navigator.window = s.options.window;
-  s.settings.navigator.recovery = !a.no_recovery;
-  s.settings.seed = a.seed;
+  s.survey =
+      a.sigma_map ? rig::gaussian_survey(s.world, *a.sigma_map, a.seed) : rig::global_camera_survey(s.world, a.seed);
+  rig::ExperimentConfig config;
+  config.window = a.window;
+  config.arm = {a.sigma_move, a.sigma_rot};
+  config.recovery = !a.no_recovery;
+  config.seed = a.seed;
+  s.settings = rig::derive_settings(config, s.survey.sigma);
   return s;
 }
 
-json survey_json(const Survey& s) {
+json survey_json(const rig::Survey& s) {
   return {{"method", s.method}, {"sigma", s.sigma}, {"rms_error", s.rms_error}, {"max_error", s.max_error}};
 }
 
-std::string survey_line(const Survey& s) {
+std::string survey_line(const rig::Survey& s) {
   return fmt::format(
       "survey: {}, position sd {:.4f} mm as the map-maker is told; against the truth RMS {:.4f} mm, max {:.4f} mm",
       s.method == "global_camera" ? "global camera + calibration" : "Gaussian error", s.sigma, s.rms_error,
@@ -108,7 +80,7 @@ std::string step_name(const mm::RouteStep& step) {
   return fmt::format("{} {} -> {}", mm::step_description(step.step), step.step.from.object, step.step.landmark);
 }
 
-json held_json(const JourneyResult& r, std::size_t entry) {
+json held_json(const rig::JourneyResult& r, std::size_t entry) {
   for (auto it = r.held.rbegin(); it != r.held.rend(); ++it) {
     if (it->entry == entry) {
       return {{"intended", it->intended}, {"held", it->actual}, {"offset", it->offset}, {"correct", it->correct}};
@@ -117,24 +89,28 @@ json held_json(const JourneyResult& r, std::size_t entry) {
   return nullptr;
 }
 
-int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
+int one_journey(const NavArgs& a, const Setup& s) {
   const auto check_id = [](const char* option, std::int64_t id) {
     if (id < 0) throw UsageError{fmt::format("{} {}: object ids start at 0", option, id)};
     return static_cast<std::uint32_t>(id);
   };
   const std::uint32_t from = check_id("--from", *a.from);
   const std::uint32_t to = check_id("--to", *a.to);
-  mm::Route route;
+  std::optional<NavVideo> video;
+  if (!a.video.empty()) video.emplace(a.video, s.settings.map.window.side, s.settings.navigator.camera.side_px);
+  const auto system =
+      rig::make_park_kender(s.survey, s.settings, *mm::parse_criterion(a.cost), video ? &*video : nullptr);
+  std::unique_ptr<rig::Plan> plan;
   try {
-    route = maker.plan(from, to, *mm::parse_criterion(a.cost));
-  } catch (const mm::UnreachableGoal& e) {
+    plan = system->plan(from, to);
+  } catch (const rig::UnreachableGoal& e) {
     print_error("nav", e.what());
     return kExitUnreachable;
   }
-  std::optional<NavVideo> video;
-  if (!a.video.empty()) video.emplace(a.video, s.options.window.side, s.settings.navigator.camera.side_px);
-  const JourneyResult r = run_journey(s.world, route, s.settings, video ? &*video : nullptr);
+  const mm::Route& route = rig::route_of(*plan);
+  const rig::JourneyResult r = rig::run_journey(*system, *plan, s.world, s.settings.journey);
   if (video) video->close();
+  const nv::JourneyReport& report = *rig::navigator_report(r.travel);
 
   const auto& entries = route.custom_map.entries;
   if (a.json) {
@@ -147,21 +123,21 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
                 {"U", route.unreliability},
                 {"landmark_distance", route.landmark_distance},
                 {"steps", route.steps.size()}}},
-              {"outcome", outcome_name(r.outcome)},
-              {"reached_goal", reached_goal(r.outcome)},
-              {"ending", ending_name(r.report.ending)},
-              {"reason", r.report.reason},
-              {"recoveries", r.report.recoveries},
+              {"outcome", rig::outcome_name(r.outcome)},
+              {"reached_goal", rig::reached_goal(r.outcome)},
+              {"ending", rig::ending_name(r.travel.ending)},
+              {"reason", r.travel.reason},
+              {"recoveries", r.travel.recoveries},
               {"frames", r.frames},
-              {"commanded_travel", r.commanded_travel},
-              {"arm_travel", r.true_travel},
-              {"refused_moves", r.refused_moves},
+              {"commanded_travel", r.arm.commanded_travel},
+              {"arm_travel", r.arm.true_travel},
+              {"refused_moves", r.arm.refused_moves},
               {"survey", survey_json(s.survey)},
               {"seed", a.seed}};
     json list = json::array();
     for (std::size_t e = 0; e < entries.size(); ++e) {
       json item = {{"entry", e}, {"map", nav::format_entry(entries[e])}, {"truth", held_json(r, e)}};
-      for (const nv::EntryRecord& rec : r.report.entries) {
+      for (const nv::EntryRecord& rec : report.entries) {
         if (rec.entry != e) continue;
         item["verified"] = rec.verified;
         item["measured_qoc"] = rec.measured_qoc ? json(*rec.measured_qoc) : json(nullptr);
@@ -185,7 +161,7 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
       std::string qoc = "-";
       std::string recov = "-";
       std::string frames = "-";
-      for (const nv::EntryRecord& rec : r.report.entries) {
+      for (const nv::EntryRecord& rec : report.entries) {
         if (rec.entry != e) continue;
         verified = rec.verified ? "yes" : "no";
         qoc = rec.measured_qoc ? std::to_string(*rec.measured_qoc) : "-";
@@ -199,65 +175,66 @@ int one_journey(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
                                h.is_null() ? "-" : fmt::format("{:.2f}", h["offset"].get<double>()), verified, qoc,
                                recov, frames, !h.is_null() && !h["correct"].get<bool>() ? "  WRONG" : "");
     }
-    std::cout << fmt::format("\noutcome: {} (navigator: {}{}{}); {} recoveries\n", outcome_name(r.outcome),
-                             ending_name(r.report.ending), r.report.reason.empty() ? "" : ", ", r.report.reason,
-                             r.report.recoveries)
-              << fmt::format("frames {}, commanded travel {:.1f} mm, arm travel {:.1f} mm{}\n", r.frames,
-                             r.commanded_travel, r.true_travel,
-                             r.refused_moves > 0 ? fmt::format(", {} moves out of reach", r.refused_moves) : "");
+    std::cout << fmt::format("\noutcome: {} (navigator: {}{}{}); {} recoveries\n", rig::outcome_name(r.outcome),
+                             rig::ending_name(r.travel.ending), r.travel.reason.empty() ? "" : ", ", r.travel.reason,
+                             r.travel.recoveries)
+              << fmt::format(
+                     "frames {}, commanded travel {:.1f} mm, arm travel {:.1f} mm{}\n", r.frames,
+                     r.arm.commanded_travel, r.arm.true_travel,
+                     r.arm.refused_moves > 0 ? fmt::format(", {} moves out of reach", r.arm.refused_moves) : "");
   }
   if (!a.plot.empty()) {
     ExecutedRoute executed;
-    executed.track = r.track;
-    const double half = s.options.window.side / 2;
-    for (const HeldLandmark& h : r.held) executed.held_windows.push_back(h.tool - Eigen::Vector2d(half, half));
-    executed.caption = std::string(outcome_name(r.outcome));
-    write_map_plot(maker, route, a.plot, &executed);
+    executed.track = r.arm.track;
+    const double half = s.settings.map.window.side / 2;
+    for (const rig::HeldLandmark& h : r.held) executed.held_windows.push_back(h.tool - Eigen::Vector2d(half, half));
+    executed.caption = std::string(rig::outcome_name(r.outcome));
+    write_map_plot(system->maker(), route, a.plot, &executed);
   }
   return kExitOk;
 }
 
-int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
-  const std::vector<mm::Route> routes = draw_routes(maker, *mm::parse_criterion(a.cost), *a.trials, a.seed);
+int trials(const NavArgs& a, const Setup& s) {
+  const auto system = rig::make_park_kender(s.survey, s.settings, *mm::parse_criterion(a.cost));
+  const std::vector<std::unique_ptr<rig::Plan>> plans =
+      rig::draw_plans(*system, s.world.objects.size(), *a.trials, a.seed);
   ProgressBar bar("nav", *a.trials, true);
-  const TrialsSummary t =
-      run_trials(s.world, routes, s.settings, a.threads, [&](std::int64_t done) { bar.update(done); });
+  const rig::TrialsSummary t = rig::run_trials(*system, plans, s.world, s.settings.journey, a.threads,
+                                               [&](std::int64_t done) { bar.update(done); });
   bar.clear();
   const auto n = static_cast<std::int64_t>(t.trials.size());
   const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
   const double mean_travel = t.true_travel / static_cast<double>(n);
   const double mean_commanded = t.commanded_travel / static_cast<double>(n);
-  double mean_planned = 0;
+  const double mean_planned = t.mean_planned_reliability();
   double mean_planned_distance = 0;
-  for (const mm::Route& r : routes) {
-    mean_planned += std::exp(-r.unreliability) / static_cast<double>(n);
-    mean_planned_distance += r.distance / static_cast<double>(n);
-  }
+  for (const auto& p : plans) mean_planned_distance += p->planned_distance / static_cast<double>(n);
   if (a.json) {
     json outcomes;
     json rates;
     json ci;
-    for (const Outcome o : kOutcomes) {
-      const std::string name(outcome_name(o));
+    for (const rig::Outcome o : rig::kOutcomes) {
+      const std::string name(rig::outcome_name(o));
       outcomes[name] = t.count(o);
       rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
-      const Interval w = wilson_interval(t.count(o), n);
+      const rig::Interval w = rig::wilson_interval(t.count(o), n);
       ci[name] = {w.low, w.high};
     }
-    const Interval reached = wilson_interval(t.reached(), n);
+    const rig::Interval reached = rig::wilson_interval(t.reached(), n);
     // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
     // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
     json journeys = json::array();
     for (std::size_t i = 0; i < t.trials.size(); ++i) {
-      const TrialRecord& r = t.trials[i];
+      const rig::TrialRecord& r = t.trials[i];
+      const mm::Route& route = rig::route_of(*plans[i]);
       journeys.push_back({{"from", r.from},
                           {"to", r.to},
-                          {"planned_reliability", std::exp(-routes[i].unreliability)},
-                          {"outcome", outcome_name(r.outcome)},
+                          {"planned_reliability", r.planned_reliability},
+                          {"outcome", rig::outcome_name(r.outcome)},
                           {"reason", r.reason},
                           {"first_wrong_entry", r.first_wrong_entry ? json(*r.first_wrong_entry) : json(nullptr)},
                           {"first_wrong_step", r.first_wrong_entry && *r.first_wrong_entry > 0
-                                                   ? json(step_name(routes[i].steps.at(*r.first_wrong_entry - 1)))
+                                                   ? json(step_name(route.steps.at(*r.first_wrong_entry - 1)))
                                                    : json(nullptr)},
                           {"recoveries", r.recoveries},
                           {"frames", r.frames},
@@ -295,11 +272,11 @@ int trials(const NavArgs& a, const Setup& s, const mm::MapMaker& maker) {
       n, a.world, s.world.objects.size(), a.cost, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on", a.seed,
       survey_line(s.survey), "OUTCOME", "COUNT", "RATE", "95% CI");
   const auto row = [&](std::string_view name, std::int64_t count) {
-    const Interval w = wilson_interval(count, n);
+    const rig::Interval w = rig::wilson_interval(count, n);
     std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,
                              100.0 * static_cast<double>(count) / static_cast<double>(n), 100 * w.low, 100 * w.high);
   };
-  for (const Outcome o : kOutcomes) row(outcome_name(o), t.count(o));
+  for (const rig::Outcome o : rig::kOutcomes) row(rig::outcome_name(o), t.count(o));
   row("reached the goal", t.reached());
   std::cout << fmt::format(
       "\nplanned: mean D {:.1f} mm; the map-maker expected {:.2f}% of the journeys to follow their plan (mean R)\n"
@@ -348,8 +325,7 @@ int nav_command(const NavArgs& a) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }
   const Setup s = make_setup(a);
-  const mm::MapMaker maker(s.survey.workspace, s.options);
-  return a.trials ? trials(a, s, maker) : one_journey(a, s, maker);
+  return a.trials ? trials(a, s) : one_journey(a, s);
 }
 
 }  // namespace neopipe::apps

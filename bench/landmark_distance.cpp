@@ -17,8 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "apps/nav_trials.hpp"
 #include "nav/mapmaker/map_maker.hpp"
+#include "rig/park_kender.hpp"
+#include "rig/trials.hpp"
 #include "sim/world.hpp"
 
 namespace {
@@ -41,11 +42,13 @@ struct PairResult {
   double excess_travel() const { return landmark.distance - context.distance; }
 };
 
-std::vector<PairResult> plan_pairs(const mm::MapMaker& maker, const Options& o) {
+// The pairs `neopipe nav --trials --cost distance` would draw with this seed.
+std::vector<PairResult> plan_pairs(const neopipe::rig::ParkKenderSystem& system, const Options& o) {
   std::vector<PairResult> out;
-  for (mm::Route& r : neopipe::apps::draw_routes(maker, mm::CostCriterion::distance, o.pairs, o.seed)) {
-    mm::Route by_landmarks = maker.plan(r.start, r.goal, mm::CostCriterion::landmark);
-    out.push_back({std::move(r), std::move(by_landmarks)});
+  const mm::MapMaker& maker = system.maker();
+  for (const auto& plan : neopipe::rig::draw_plans(system, maker.workspace().objects.size(), o.pairs, o.seed)) {
+    const mm::Route& r = neopipe::rig::route_of(*plan);
+    out.push_back({r, maker.plan(r.start, r.goal, mm::CostCriterion::landmark)});
   }
   return out;
 }
@@ -103,8 +106,12 @@ struct WorldResult {
 WorldResult run_world(const std::string& path, const Options& o) {
   const neopipe::sim::World world = neopipe::sim::load_world(path);
   // The defaults of `neopipe map`: window 50 mm, sigma 1 mm (U only breaks ties of D and L here).
-  const mm::MapMaker maker(mm::Workspace{world.size, world.objects}, mm::MapMakerOptions{});
-  WorldResult r{path, plan_pairs(maker, o), {}};
+  const mm::MapMakerOptions options;
+  neopipe::nav::navigator::NavigatorConfig navigator;
+  navigator.window = options.window;
+  const neopipe::rig::ParkKenderSystem system(mm::Workspace{world.size, world.objects}, options,
+                                              mm::CostCriterion::distance, navigator);
+  WorldResult r{path, plan_pairs(system, o), {}};
   std::copy_if(r.all.begin(), r.all.end(), std::back_inserter(r.differ),
                [](const PairResult& p) { return p.different_map(); });
   return r;

@@ -1,8 +1,8 @@
 // The navigator's eye: the engine's built-in blob graph run on one onboard frame at a time, its
 // centroids turned into window coordinates. The navigator needs each sighting before it can decide
-// its next move, so there is never a second frame to overlap with: the compiled graph's nodes run
-// in order on the calling thread, as the executor would run them for a lone frame, without its
-// worker threads (and without the process-wide thread limit it sets while it lives).
+// its next move, so there is never a second frame to overlap with: the graph runs inline on the
+// calling thread (pipeline::InlineRunner), without the executor's worker threads (and without the
+// process-wide thread limit it sets while it lives).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -16,8 +16,8 @@
 #include "nav/navigator/navigator.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
+#include "pipeline/inline_runner.hpp"
 #include "pipeline/kernel_registry.hpp"
-#include "pipeline/node.hpp"
 
 namespace neopipe::nav::navigator {
 namespace {
@@ -129,49 +129,20 @@ struct Eye::Impl {
   Impl(pipeline::io::FrameSource& camera, const NavigatorConfig& navigator)
       : source(camera),
         config(navigator),
-        graph(gray_blob_graph()),
-        blobs(*graph.find_output(pipeline::PortType::blobs)) {
+        runner(gray_blob_graph()),
+        blobs(*runner.graph().find_output(pipeline::PortType::blobs)) {
     blob_radius_px = 0.5 * config.camera.object_diameter / config.window.side * config.camera.side_px;
-    values.resize(graph.nodes().size());
-    for (std::size_t i = 0; i < values.size(); ++i) values[i].resize(graph.nodes()[i].impl->outputs().size());
-  }
-
-  void configure(cv::Size size) {
-    for (auto& node : graph.nodes()) node.impl->configure(size);
-    size_ = size;
   }
 
   const pipeline::BlobList& run(const cv::Mat& frame) {
     if (frame.type() != CV_8UC1) throw std::runtime_error("the navigator's eye takes gray frames (CV_8UC1)");
-    if (frame.size() != size_) configure(frame.size());
-    const auto src = static_cast<std::size_t>(graph.source());
-    values[src][0] = frame;
-    std::vector<const pipeline::Value*> inputs;
-    std::vector<pipeline::Value*> outputs;
-    for (std::size_t i = 0; i < graph.nodes().size(); ++i) {
-      if (i == src) continue;
-      pipeline::CompiledNode& node = graph.nodes()[i];
-      inputs.assign(node.inputs.size(), nullptr);
-      for (std::size_t k = 0; k < node.inputs.size(); ++k) {
-        const pipeline::PortAddress from = node.inputs[k].from;
-        if (from.valid()) inputs[k] = &values[static_cast<std::size_t>(from.node)][static_cast<std::size_t>(from.port)];
-      }
-      outputs.clear();
-      for (pipeline::Value& v : values[i]) outputs.push_back(&v);
-      pipeline::NodeIO io(inputs, outputs, node.impl->outputs(), size_);
-      node.impl->begin_frame(io);
-      if (node.impl->footprint() != kernels::Footprint::frame) node.impl->run_rows(io, {0, size_.height});
-    }
-    const pipeline::PortAddress out = graph.outputs()[blobs];
-    return std::get<pipeline::BlobList>(values[static_cast<std::size_t>(out.node)][static_cast<std::size_t>(out.port)]);
+    return std::get<pipeline::BlobList>(runner.run(frame).at(blobs));
   }
 
   pipeline::io::FrameSource& source;
   NavigatorConfig config;
-  pipeline::CompiledGraph graph;
+  pipeline::InlineRunner runner;
   std::size_t blobs;
-  std::vector<std::vector<pipeline::Value>> values;  // [node][output port], reused frame to frame
-  cv::Size size_;
   pipeline::io::SourceFrame last;
   std::int64_t frames = 0;
   double blob_radius_px = 0;  // a whole marble's blob radius at the current threshold

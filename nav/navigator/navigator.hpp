@@ -4,8 +4,8 @@
 // moves only through the Arm interface; it links neither the simulator nor the map-maker, so no
 // ground truth can reach it (a link-time fact: see nav/navigator/CMakeLists.txt and its test).
 //
-// API contract shared by the navigator library (nav/navigator/) and the experiment harness
-// (apps/nav_*): change it only in both at once.
+// API contract shared by the navigator library (nav/navigator/) and the rig (rig/park_kender.*):
+// change it only in both at once.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -15,19 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "nav/common/arm.hpp"
 #include "nav/common/custom_map.hpp"
 #include "nav/common/window.hpp"
 #include "pipeline/io/frame_source.hpp"
 
 namespace neopipe::nav::navigator {
 
-/// The arm as the navigator commands it: a move by (dx, dy) mm in the current tool frame, then a turn
-/// by dtheta rad. The navigator never turns on purpose (dtheta = 0); the real arm may, by error.
-class Arm {
- public:
-  virtual ~Arm() = default;
-  virtual void move_relative(double dx, double dy, double dtheta) = 0;
-};
+/// The arm as the navigator commands it (nav/common/arm.hpp). The navigator never turns on purpose
+/// (dtheta = 0); the real arm may, by error.
+using Arm = nav::Arm;
 
 /// What the navigator knows of its own camera: the square image shows exactly its view window, image
 /// x along the tool's x axis, image up along its y axis, `side_px` pixels for `window.side` mm.

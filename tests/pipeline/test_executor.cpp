@@ -41,6 +41,7 @@
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
 #include "pipeline/graph_spec.hpp"
+#include "pipeline/inline_runner.hpp"
 #include "pipeline/kernel_registry.hpp"
 #include "pipeline_test_support.hpp"
 
@@ -315,6 +316,17 @@ std::vector<pl::FrameResult> expect_deterministic(const std::function<pl::Compil
       }
     }
   }
+  // The same frames one at a time on the calling thread, as a navigator's eye runs them.
+  pl::InlineRunner runner(make_graph());
+  for (size_t f = 0; f < std::min(frames.size(), reference.size()); ++f) {
+    const std::vector<pl::Value>& outputs = runner.run(frames[f]);
+    EXPECT_EQ(outputs.size(), reference[f].outputs.size());
+    for (size_t k = 0; k < std::min(outputs.size(), reference[f].outputs.size()); ++k) {
+      expect_same_value(outputs[k], reference[f].outputs[k],
+                        "inline, frame " + std::to_string(f) + ", output " + std::to_string(k));
+    }
+  }
+  EXPECT_EQ(runner.frames(), static_cast<std::int64_t>(frames.size()));
   return reference;
 }
 
@@ -645,7 +657,7 @@ TEST(Executor, OptionDefaults) {
   EXPECT_EQ(defaults.frames_in_flight(), 2 * (defaults.threads() + 2));
   pl::Executor one(graph(), {.threads = 3, .frames_in_flight = 1}, [](pl::FrameResult&&) {});
   EXPECT_EQ(one.threads(), 3);
-  EXPECT_EQ(one.frames_in_flight(), 2);  // at least two
+  EXPECT_EQ(one.frames_in_flight(), 2);       // at least two
   EXPECT_EQ(one.graph().nodes().size(), 3U);  // src, gray, blobs (the threshold folded into blobs)
 }
 
@@ -896,4 +908,13 @@ TEST(Executor, OutputImagesStayValidAfterLaterFrames) {
           << "output " << k;
     }
   }
+}
+
+TEST(InlineRunner, RefusesFramesOfTheWrongTypeOrSize) {
+  pl::InlineRunner runner(pl::compile(pl::blob_graph(), pl::standard_kernels()));
+  EXPECT_THROW(runner.run(cv::Mat(8, 8, CV_8UC1)), std::invalid_argument);  // the built-in graph takes BGR
+  EXPECT_THROW(runner.run(cv::Mat()), std::invalid_argument);
+  runner.run(cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(0)));
+  EXPECT_THROW(runner.run(cv::Mat(9, 8, CV_8UC3, cv::Scalar::all(0))), std::invalid_argument);
+  EXPECT_EQ(runner.frames(), 1);
 }

@@ -43,9 +43,9 @@ TEST(Adjust, ConvergesToEveryCornerDespiteMotionErrors) {
       ASSERT_TRUE(start);
       Eigen::Vector2d landmark = pilot.sighting().objects[*start];
       for (const Corner c : {Corner::NE, Corner::SE, Corner::NW, Corner::SW, Corner::NE}) {
-        const int before = rig.arm().moves();
+        const int before = rig.moves();
         ASSERT_FALSE(detail::adjust(pilot, landmark, c)) << "errors x" << k << " seed " << seed;
-        const int moves = rig.arm().moves() - before;
+        const int moves = rig.moves() - before;
         worst_moves = std::max(worst_moves, moves);
         const Eigen::Vector2d truth = rig.to_window(world.objects[0]);
         const Eigen::Vector2d target = rig.config().window.corner_point(c);

@@ -18,11 +18,12 @@ using test_rig::RigOptions;
 constexpr std::size_t S = 0, A = 1, B = 2, D = 3;
 
 // From S held at SW the isolated landmark is B (QOC 3); the map intends A (QOC 2). Held at NW, B
-// sees only A, so "(3, NW, Isol)" leads from the mistake back to A.
+// sees only A, so "(3, NW, Isol)" leads from the mistake back to A. A lies 2 mm nearer S than B does,
+// so B's isolation does not hang on a tie that the camera's noise would break either way.
 sim::World mistake_world() {
   sim::World w;
   w.size = {300, 300};
-  w.objects = {{100, 100}, {140, 105}, {105, 140}, {115, 175}};
+  w.objects = {{100, 100}, {138, 105}, {105, 140}, {115, 175}};
   return w;
 }
 

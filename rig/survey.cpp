@@ -1,4 +1,4 @@
-#include "apps/nav_survey.hpp"
+#include "rig/survey.hpp"
 
 #include <fmt/format.h>
 
@@ -6,23 +6,22 @@
 #include <cmath>
 #include <limits>
 
-#include "apps/nav_harness.hpp"
 #include "calib/dot_grid_detector.hpp"
 #include "calib/estimate.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
 #include "pipeline/kernel_registry.hpp"
+#include "rig/seeds.hpp"
 #include "sim/cameras.hpp"
 #include "sim/marble_renderer.hpp"
 #include "sim/random.hpp"
 #include "sim/target_renderer.hpp"
 
-namespace neopipe::apps {
+namespace neopipe::rig {
 namespace {
 
 using Eigen::Vector2d;
-namespace mm = nav::mapmaker;
 
 void measure_errors(const sim::World& world, Survey& s) {
   double sum = 0;
@@ -53,7 +52,7 @@ calib::Calibration calibrate_global_camera(const sim::PinholeCamera& camera, con
   for (std::size_t v = 0; v < poses.size(); ++v) {
     const cv::Mat image = sim::render_target(grid, poses[v], camera, renderer, static_cast<std::int64_t>(v));
     const auto found = calib::find_dot_grid(image, grid.cols, grid.rows);
-    if (!found) throw mm::MapError(fmt::format("global camera survey: calibration view {}: dot grid not found", v));
+    if (!found) throw SurveyError(fmt::format("global camera survey: calibration view {}: dot grid not found", v));
     calib::View view{fmt::format("view {}", v), {}};
     for (std::size_t i = 0; i < plane.size(); ++i) view.points.push_back({(*found)[i], plane[i]});
     views.push_back(std::move(view));
@@ -67,7 +66,7 @@ calib::Calibration calibrate_global_camera(const sim::PinholeCamera& camera, con
 // object without a blob within its radius, means marbles merged or vanished in the image.
 std::vector<Vector2d> assign_world_ids(const sim::World& world, const std::vector<Vector2d>& surveyed) {
   if (surveyed.size() != world.objects.size()) {
-    throw mm::MapError(fmt::format(
+    throw SurveyError(fmt::format(
         "global camera survey: the image shows {} marbles of the world's {} (marbles touching in its pixels); "
         "survey with --sigma-map instead",
         surveyed.size(), world.objects.size()));
@@ -85,7 +84,7 @@ std::vector<Vector2d> assign_world_ids(const sim::World& world, const std::vecto
       }
     }
     if (std::sqrt(best) > world.marble_diameter / 2 || claimed[at] >= 0) {
-      throw mm::MapError(fmt::format("global camera survey: object {} was not found in the global camera's image", i));
+      throw SurveyError(fmt::format("global camera survey: object {} was not found in the global camera's image", i));
     }
     claimed[at] = static_cast<int>(i);
     out[i] = surveyed[at];
@@ -101,7 +100,7 @@ Survey gaussian_survey(const sim::World& world, double sigma, std::uint64_t seed
   s.sigma = sigma;
   s.workspace = {world.size, {}};
   s.workspace.objects.reserve(world.objects.size());
-  sim::Random random(stream_seed(seed, 100));
+  sim::Random random(stream_seed(seed, streams::gaussian_survey));
   for (const Vector2d& p : world.objects) {
     const double x = random.normal(p.x(), sigma);
     const double y = random.normal(p.y(), sigma);
@@ -114,7 +113,7 @@ Survey gaussian_survey(const sim::World& world, double sigma, std::uint64_t seed
 Survey global_camera_survey(const sim::World& world, std::uint64_t seed) {
   const sim::PinholeCamera camera = sim::make_global_camera(world.size);
   sim::ImageModel model;
-  model.seed = stream_seed(seed, 101);
+  model.seed = stream_seed(seed, streams::global_camera);
   const sim::MarbleRenderer renderer(model, camera.size());
   const calib::Calibration calibration = calibrate_global_camera(camera, renderer, world.size);
 
@@ -136,4 +135,4 @@ Survey global_camera_survey(const sim::World& world, std::uint64_t seed) {
   return s;
 }
 
-}  // namespace neopipe::apps
+}  // namespace neopipe::rig

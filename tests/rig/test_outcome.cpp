@@ -1,15 +1,19 @@
-// The harness's outcome classification (park-kender.md §9) and the Wilson interval of its table.
+// The rig's outcome classification (park-kender.md §9), the Wilson interval of its table and the
+// McNemar test of paired runs.
 
 #include <gtest/gtest.h>
 
-#include "apps/nav_outcome.hpp"
+#include <cmath>
+
+#include "rig/outcome.hpp"
 
 namespace {
-using neopipe::apps::classify;
-using neopipe::apps::JourneyTruth;
-using neopipe::apps::Outcome;
-using neopipe::apps::wilson_interval;
-using neopipe::nav::navigator::Ending;
+using neopipe::rig::classify;
+using neopipe::rig::Ending;
+using neopipe::rig::JourneyTruth;
+using neopipe::rig::mcnemar_p;
+using neopipe::rig::Outcome;
+using neopipe::rig::wilson_interval;
 
 TEST(NavOutcome, AwareFailuresComeFromTheNavigatorsEnding) {
   // Whatever the ground truth says, a navigator that stopped failed knowingly.
@@ -29,10 +33,10 @@ TEST(NavOutcome, ArrivalsAreJudgedByTheTruth) {
 }
 
 TEST(NavOutcome, NamesAndGoalReached) {
-  EXPECT_EQ(neopipe::apps::outcome_name(Outcome::success_recovered), "success_recovered");
-  EXPECT_EQ(neopipe::apps::outcome_name(Outcome::fail_unaware), "fail_unaware");
+  EXPECT_EQ(neopipe::rig::outcome_name(Outcome::success_recovered), "success_recovered");
+  EXPECT_EQ(neopipe::rig::outcome_name(Outcome::fail_unaware), "fail_unaware");
   int reached = 0;
-  for (const Outcome o : neopipe::apps::kOutcomes) reached += neopipe::apps::reached_goal(o) ? 1 : 0;
+  for (const Outcome o : neopipe::rig::kOutcomes) reached += neopipe::rig::reached_goal(o) ? 1 : 0;
   EXPECT_EQ(reached, 3);
 }
 
@@ -54,6 +58,19 @@ TEST(NavOutcome, WilsonIntervalMatchesKnownValues) {
   const auto empty = wilson_interval(0, 0);
   EXPECT_DOUBLE_EQ(empty.low, 0.0);
   EXPECT_DOUBLE_EQ(empty.high, 1.0);
+}
+
+// Exact two-sided sign test: values worked by hand from the binomial distribution.
+TEST(NavOutcome, McNemarIsTheExactSignTest) {
+  EXPECT_DOUBLE_EQ(mcnemar_p(0, 0), 1.0);
+  EXPECT_DOUBLE_EQ(mcnemar_p(3, 3), 1.0);
+  EXPECT_NEAR(mcnemar_p(7, 0), 2.0 / 128, 1e-12);                // 2 * 0.5^7
+  EXPECT_NEAR(mcnemar_p(0, 7), 2.0 / 128, 1e-12);                // symmetric
+  EXPECT_NEAR(mcnemar_p(4, 0), 0.125, 1e-12);                    // 2 * 0.5^4
+  EXPECT_NEAR(mcnemar_p(14, 5), 2 * 0.0317840576171875, 1e-12);  // 2 P(X <= 5), X ~ B(19, 1/2)
+  EXPECT_NEAR(mcnemar_p(1, 2), 1.0, 1e-12);                      // 2 * 0.5 capped at 1
+  // Thousands of discordant journeys neither overflow nor lose the tail.
+  EXPECT_NEAR(mcnemar_p(1100, 900), 8.457089535503927e-06, 1e-12);
 }
 
 }  // namespace

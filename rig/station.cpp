@@ -1,0 +1,112 @@
+#include "rig/station.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "rig/seeds.hpp"
+#include "sim/arm/angles.hpp"
+#include "sim/arm/scara_sizing.hpp"
+#include "sim/camera_source.hpp"
+
+namespace neopipe::rig {
+
+using Eigen::Vector2d;
+
+sim::MotionErrors motion_errors(const ArmErrors& e) {
+  if (e.sigma_move == 0 && e.sigma_rot == 0) return sim::MotionErrors::none();
+  sim::MotionErrors m;
+  m.along_per_mm = e.sigma_move;
+  m.across_per_mm = e.sigma_move;
+  m.rotation_per_mm = sim::radians(e.sigma_rot);
+  return m;
+}
+
+sim::ScaraGeometry arm_for_world(const sim::World& world, double window_side) {
+  sim::ScaraGeometry g = sim::scara_for_workspace(world.size + Vector2d(2 * window_side, 2 * window_side));
+  g.base -= Vector2d(window_side, window_side);
+  return g;
+}
+
+// The navigators' only way to move: relative commands, which the simulated arm executes with its
+// errors. A command the arm cannot reach leaves it where it was (as a real arm stopping at its
+// limit would), so the navigator finds out by looking, not by an exception.
+class Station::ArmAdapter final : public nav::Arm {
+ public:
+  ArmAdapter(sim::SimulatedArm& arm, ArmLog& log) : arm_(arm), log_(log) {}
+
+  void move_relative(double dx, double dy, double dtheta) override {
+    ++log_.moves;
+    log_.commanded_travel += std::hypot(dx, dy);
+    const sim::Pose2 before = arm_.pose();
+    try {
+      arm_.move_relative(dx, dy, dtheta);
+    } catch (const sim::ReachError&) {
+      ++log_.refused_moves;
+      return;
+    }
+    const sim::Pose2& after = arm_.pose();
+    log_.true_travel += std::hypot(after.x - before.x, after.y - before.y);
+    log_.track.emplace_back(after.x, after.y);
+  }
+
+ private:
+  sim::SimulatedArm& arm_;
+  ArmLog& log_;
+};
+
+Station::Station(const sim::World& world, const StationSettings& settings, const sim::Pose2& start)
+    : world_(world),
+      settings_(settings),
+      arm_(arm_for_world(world, settings.camera.window_mm), settings.motion, stream_seed(settings.seed, streams::arm),
+           start),
+      adapter_(std::make_unique<ArmAdapter>(arm_, log_)) {
+  log_.track.emplace_back(start.x, start.y);
+  sim::ImageModel image = settings.image;
+  image.seed = stream_seed(settings.seed, streams::onboard_camera);
+  camera_ = sim::onboard_camera_source(
+      world_, settings.camera, image, [this] { return arm_.pose(); }, pipeline::io::ColorFormat::gray);
+}
+
+Station::~Station() = default;
+
+nav::Arm& Station::arm() {
+  return *adapter_;
+}
+
+pipeline::io::FrameSource& Station::onboard_camera() {
+  return *camera_;
+}
+
+const sim::Pose2& Station::tool() const {
+  return arm_.pose();
+}
+
+Vector2d Station::to_world(const Vector2d& offset) const {
+  const sim::Pose2& p = arm_.pose();
+  const double c = std::cos(p.theta);
+  const double s = std::sin(p.theta);
+  return {p.x + c * offset.x() - s * offset.y(), p.y + s * offset.x() + c * offset.y()};
+}
+
+Vector2d Station::to_tool(const Vector2d& world) const {
+  const sim::Pose2& p = arm_.pose();
+  const Vector2d q = world - Vector2d(p.x, p.y);
+  const double c = std::cos(p.theta);
+  const double s = std::sin(p.theta);
+  return {c * q.x() + s * q.y(), -s * q.x() + c * q.y()};
+}
+
+NearestObject Station::nearest_object(const Vector2d& world) const {
+  NearestObject best{0, std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < world_.objects.size(); ++i) {
+    const double d = (world_.objects[i] - world).norm();
+    if (d < best.distance) best = {static_cast<std::uint32_t>(i), d};
+  }
+  return best;
+}
+
+void Station::place_tool(const sim::Pose2& pose) {
+  arm_.move_to(pose);
+}
+
+}  // namespace neopipe::rig
