@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Eigen/LU>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
@@ -13,6 +14,7 @@
 
 #include "calib/calibration.hpp"
 #include "calib/estimate.hpp"
+#include "calib/plane_pose.hpp"
 #include "sim/cameras.hpp"
 #include "sim/random.hpp"
 #include "sim/target_renderer.hpp"
@@ -190,4 +192,69 @@ TEST(Calibration, TooFewViewsOrPointsAreRefused) {
   calib::Correspondences collinear;
   for (int i = 0; i < 10; ++i) collinear.push_back({{10.0 * i, 5.0 * i}, {1.0 * i, 0.5 * i}});
   EXPECT_THROW((void)calib::calibrate_homography(collinear, s.camera.size()), calib::CalibrationError);
+}
+
+namespace {
+
+// The full model of a simulated camera, written down from its true parameters: undistorted pixels
+// to the plane z = `plane_z` of the world (where a calibration board's face would lie).
+calib::Calibration true_full_model(const sim::PinholeCamera& camera, double plane_z) {
+  calib::Calibration c;
+  c.model = calib::Model::full;
+  c.image_size = camera.size();
+  c.camera_matrix = camera.camera_matrix();
+  c.distortion_coefficients = camera.distortion_coefficients();
+  Eigen::Matrix3d k;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) k(i, j) = c.camera_matrix.at<double>(i, j);
+  }
+  Eigen::Matrix3d rt;  // world (X, Y, 1) on the plane -> camera coordinates
+  rt.col(0) = camera.rotation().col(0);
+  rt.col(1) = camera.rotation().col(1);
+  rt.col(2) = camera.rotation().col(2) * plane_z + camera.translation();
+  c.image_to_world = (k * rt).inverse();
+  return c;
+}
+
+}  // namespace
+
+// A point h mm above the calibrated plane is found where its viewing ray meets that height, not
+// where the plane homography would put it (the parallax of a marble's centre, of a board's face).
+TEST(PlanePose, PointsAboveThePlaneAreFoundAtTheirHeight) {
+  const sim::PinholeCamera camera = sim::make_global_camera({500, 500});
+  for (const double plane_z : {0.0, 3.0}) {
+    const calib::Calibration c = true_full_model(camera, plane_z);
+    const calib::PlanePose pose = calib::plane_pose(c);
+    EXPECT_NEAR(pose.x_axis.norm(), 1, 1e-9);
+    EXPECT_NEAR(pose.z_axis.dot(pose.x_axis), 0, 1e-9);
+    for (const double h : {0.0, 2.5, -2.5, 40.0}) {
+      std::vector<Eigen::Vector2d> truth;
+      std::vector<Eigen::Vector2d> pixels;
+      for (const double x : {0.0, 120.0, 250.0, 499.0}) {
+        for (const double y : {3.0, 250.0, 480.0}) {
+          truth.emplace_back(x, y);
+          pixels.push_back(*camera.project({x, y, plane_z + h}));
+        }
+      }
+      const auto found = calib::to_world_at_height(c, pixels, h);
+      const auto flat = c.to_world(pixels);
+      double parallax = 0;
+      for (std::size_t i = 0; i < truth.size(); ++i) {
+        EXPECT_LT((found[i] - truth[i]).norm(), 1e-6) << "plane " << plane_z << " height " << h << " point " << i;
+        parallax = std::max(parallax, (flat[i] - truth[i]).norm());
+      }
+      // At the workspace's edge 1000 mm below a tilted camera, 2.5 mm of height is ~0.7 mm of parallax.
+      if (h == 2.5) {
+        EXPECT_GT(parallax, 0.5);
+      }
+    }
+  }
+}
+
+TEST(PlanePose, TheHomographyModelCannotLeaveItsPlane) {
+  calib::Calibration c;
+  c.model = calib::Model::homography;
+  const std::vector<Eigen::Vector2d> px{{10, 10}};
+  EXPECT_NO_THROW((void)calib::to_world_at_height(c, px, 0));
+  EXPECT_THROW((void)calib::to_world_at_height(c, px, 2.5), calib::CalibrationError);
 }
