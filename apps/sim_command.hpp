@@ -2,6 +2,7 @@
 // `neopipe sim`: make worlds, render camera frames and videos, drive the arm.
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "apps/sim_arm_command.hpp"
@@ -17,7 +18,8 @@ struct SimWorldArgs {
   std::string out;
 };
 
-/// What `sim render` and `sim video` share: the world, the camera and the image model.
+/// What `sim render` and `sim video` share: the world, the camera and how it renders (a realism
+/// preset, each effect overridable; unset optionals keep the preset's value).
 struct SimCameraArgs {
   std::string world;
   std::string camera = "global";
@@ -26,11 +28,27 @@ struct SimCameraArgs {
   double tilt = 4;                      ///< global: degrees from vertical
   double tilt_azimuth = 30;             ///< global: direction of the lean, degrees from East
   double roll = 2;                      ///< global: degrees about the optical axis
-  std::string distortion;               ///< k1,k2,p1,p2,k3; empty: the camera's default
+  std::string distortion;               ///< k1,k2,p1,p2,k3; empty: the preset's
+  std::string lens_extra;               ///< k4,s1,s2,s3,s4; empty: the preset's
   double window = 50;                   ///< onboard: view window side a, mm
-  double noise = 2.0;
-  double blur = 0.7;
-  double gradient = 0.15;
+  std::string realism = "rig";
+  std::string light;  ///< x,y,z mm; empty: the preset's
+  bool no_light = false;
+  std::optional<double> ambient;
+  std::optional<double> specular;
+  std::optional<double> shininess;
+  bool no_shadows = false;
+  std::optional<double> texture;
+  std::optional<double> vignetting;
+  std::optional<double> noise;  ///< read noise sigma
+  std::optional<double> full_well;
+  bool no_shot_noise = false;
+  std::optional<double> prnu;
+  std::optional<double> blur;     ///< defocus sigma at the image centre
+  std::optional<double> defocus;  ///< at the corners
+  std::optional<double> gradient;
+  bool interlace = false;
+  bool no_interlace = false;
   std::uint64_t seed = 1;
   std::string out;
   std::string truth;
@@ -54,6 +72,8 @@ struct SimVideoArgs {
   int frames = 150;   ///< global: length of the clip
   double speed = 20;  ///< global: marble speed, mm/s
   double fps = 30;
+  std::string codec;           ///< none or jpeg; empty: the preset's
+  std::optional<int> quality;  ///< jpeg quality 1..100; unset: the preset's
   bool quiet = false;
 };
 

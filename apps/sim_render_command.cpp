@@ -16,8 +16,10 @@
 #include "apps/progress.hpp"
 #include "pipeline/media/media.hpp"
 #include "sim/cameras.hpp"
-#include "sim/marble_renderer.hpp"
+#include "sim/jpeg_loss.hpp"
+#include "sim/marble_truth.hpp"
 #include "sim/rolling_marbles.hpp"
+#include "sim/scene_renderer.hpp"
 #include "sim/target_renderer.hpp"
 #include "sim/world.hpp"
 
@@ -25,15 +27,6 @@ namespace neopipe::apps {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180;
-
-sim::ImageModel image_model(const SimCameraArgs& a) {
-  sim::ImageModel m;
-  m.noise_sigma = a.noise;
-  m.blur_sigma = a.blur;
-  m.gradient = a.gradient;
-  m.seed = a.seed;
-  return m;
-}
 
 cv::Size parse_resolution(const std::string& text, const std::string& option = "--resolution", int least = 16) {
   int w = 0;
@@ -106,43 +99,55 @@ std::vector<sim::Pose2> read_path(const std::string& path, const sim::World& wor
   return out;
 }
 
-std::array<double, 5> parse_distortion(const std::string& text) {
+std::array<double, 5> parse_five(const std::string& text, const std::string& option, const std::string& names) {
   const auto v = numbers(text);
-  if (v.empty() || v.size() > 5)
-    throw UsageError{"--distortion '" + text + "': expected up to five numbers k1,k2,p1,p2,k3"};
+  if (v.empty() || v.size() > 5) throw UsageError{option + " '" + text + "': expected up to five numbers " + names};
   std::array<double, 5> d{};
   std::copy(v.begin(), v.end(), d.begin());
   return d;
 }
 
-sim::PinholeCamera global_camera(const sim::World& w, const SimCameraArgs& a) {
+sim::PinholeCamera global_camera(const sim::World& w, const SimCameraArgs& a, const sim::Rendering& r) {
   sim::GlobalCameraConfig c;
   c.resolution = parse_resolution(a.resolution);
   c.distance = a.distance;
   c.tilt_deg = a.tilt;
   c.tilt_azimuth_deg = a.tilt_azimuth;
   c.roll_deg = a.roll;
-  if (!a.distortion.empty()) c.distortion = parse_distortion(a.distortion);
-  return sim::make_global_camera(w.size, c);
+  return sim::make_global_camera(w.size, c, r);
 }
 
-sim::OnboardCameraConfig onboard_config(const SimCameraArgs& a) {
+sim::OnboardCameraConfig onboard_config(const SimCameraArgs& a, const sim::Rendering& r, double diameter) {
   sim::OnboardCameraConfig c;
   c.window_mm = a.window;
-  if (!a.distortion.empty()) c.distortion = parse_distortion(a.distortion);
-  return c;
+  return sim::onboard_config_for(r, diameter, c);
 }
 
 void write_truth_header(std::ofstream& out, const std::string& path, bool with_frame) {
   if (!out) throw std::runtime_error(path + ": cannot be written");
-  out << (with_frame ? "frame,id,u,v\n" : "id,u,v\n");
+  out << (with_frame ? "frame,id,u,v,u0,v0\n" : "id,u,v,u0,v0\n");
 }
 
-void write_truth_rows(std::ofstream& out, const std::vector<sim::ProjectedMarble>& rows, std::int64_t frame) {
+void write_truth_rows(std::ofstream& out, const std::vector<sim::MarbleTruth>& rows, std::int64_t frame) {
   for (const auto& r : rows) {
     if (frame >= 0) out << frame << ',';
-    out << fmt::format("{},{},{}\n", r.id, r.u, r.v);
+    out << fmt::format("{},{},{},{},{}\n", r.id, r.u, r.v, r.u0, r.v0);
   }
+}
+
+// The option a Rendering field is set by, for validate()'s messages.
+std::string option_for(const std::string& message) {
+  static const std::pair<const char*, const char*> kFields[] = {
+      {"light.position", "--light"},       {"light.ambient", "--ambient"},    {"light.specular", "--specular"},
+      {"light.shininess", "--shininess"},  {"surfaces.texture", "--texture"}, {"lens.k", "--distortion/--lens-extra"},
+      {"lens.p", "--distortion"},          {"lens.s", "--lens-extra"},        {"lens:", "--distortion/--lens-extra:"},
+      {"defocus.centre", "--blur"},        {"defocus.corner", "--defocus"},   {"sensor.read_noise", "--noise"},
+      {"sensor.full_well", "--full-well"}, {"sensor.prnu", "--prnu"},         {"sensor.vignetting", "--vignetting"},
+      {"sensor.gradient", "--gradient"}};
+  for (const auto& [field, option] : kFields) {
+    if (message.rfind(field, 0) == 0) return std::string(option) + " (" + message + ")";
+  }
+  return message;
 }
 
 void write_camera(const sim::PinholeCamera& camera, const std::string& path) {
@@ -150,6 +155,10 @@ void write_camera(const sim::PinholeCamera& camera, const std::string& path) {
   if (!fs.isOpened()) throw std::runtime_error(path + ": cannot be written");
   fs << "image_width" << camera.size().width << "image_height" << camera.size().height;
   fs << "camera_matrix" << camera.camera_matrix() << "distortion_coefficients" << camera.distortion_coefficients();
+  // Beyond OpenCV's five terms (sim/lens.hpp): what a five-term calibration cannot fit.
+  fs << "extra_distortion_model"
+     << "x' += x k4 r^8 + s1 r^2 + s2 r^4; y' += y k4 r^8 + s3 r^2 + s4 r^4";
+  fs << "extra_distortion_coefficients" << camera.extra_distortion_coefficients();
   cv::Mat r(3, 3, CV_64F);
   cv::Mat t(3, 1, CV_64F);
   for (int i = 0; i < 3; ++i) {
@@ -200,72 +209,98 @@ std::pair<sim::CalibrationTarget, sim::TargetPose> parse_target(const SimRenderA
 
 }  // namespace
 
-void add_sim_camera_options(CLI::App& cmd, SimCameraArgs& a) {
-  cmd.add_option("--world", a.world, "World file (YAML), e.g. from neopipe sim world")->required()->type_name("W.yaml");
-  cmd.add_option("--camera", a.camera, "Which camera: global (above the workspace) or onboard (on the arm)")
-      ->type_name("global|onboard")
-      ->capture_default_str();
-  cmd.add_option("--resolution", a.resolution, "Global camera image size")->type_name("WxH")->capture_default_str();
-  cmd.add_option("--distance", a.distance, "Global camera: distance from the workspace centre, mm")
-      ->check(CLI::Range(10.0, 1e6))
-      ->capture_default_str();
-  cmd.add_option("--tilt", a.tilt, "Global camera: optical axis from vertical, degrees")
-      ->check(CLI::Range(0.0, 60.0))
-      ->capture_default_str();
-  cmd.add_option("--tilt-azimuth", a.tilt_azimuth, "Global camera: direction it leans towards, degrees from East")
-      ->capture_default_str();
-  cmd.add_option("--roll", a.roll, "Global camera: turn about the optical axis, degrees")->capture_default_str();
-  cmd.add_option("--distortion", a.distortion, "Lens k1,k2,p1,p2,k3 (OpenCV's model; default: the camera's own)")
-      ->type_name("K1,K2,P1,P2,K3");
-  cmd.add_option("--window", a.window, "Onboard camera: view window side a, mm")
-      ->check(CLI::Range(1.0, 1000.0))
-      ->capture_default_str();
-  cmd.add_option("--noise", a.noise, "Sensor noise sigma, gray levels (0: off)")
-      ->check(CLI::Range(0.0, 64.0))
-      ->capture_default_str();
-  cmd.add_option("--blur", a.blur, "Optical blur sigma, pixels (0: off)")
-      ->check(CLI::Range(0.0, 8.0))
-      ->capture_default_str();
-  cmd.add_option("--gradient", a.gradient, "Illumination gradient, +- fraction across the image (0: off)")
-      ->check(CLI::Range(0.0, 0.9))
-      ->capture_default_str();
-  cmd.add_option("--seed", a.seed, "Noise seed: same seed, same pixels")->capture_default_str();
+sim::Rendering rendering_of(const SimCameraArgs& a, sim::CameraKind kind, const Eigen::Vector2d& workspace) {
+  sim::Rendering r = sim::rendering_for(sim::parse_realism(a.realism), kind, workspace);
+  if (a.no_light && !a.light.empty()) throw UsageError{"--light and --no-light: choose one"};
+  if (a.interlace && a.no_interlace) throw UsageError{"--interlace and --no-interlace: choose one"};
+  if (a.no_light) r.light.reset();
+  if (!a.light.empty()) {
+    const auto v = numbers(a.light);
+    if (v.size() != 3) throw UsageError{"--light '" + a.light + "': expected x,y,z (mm)"};
+    if (!r.light) r.light = sim::PointLight{};
+    r.light->position = {v[0], v[1], v[2]};
+  }
+  const bool light_option = a.ambient || a.specular || a.shininess || a.no_shadows;
+  if (light_option && !r.light) {
+    throw UsageError{"--ambient, --specular, --shininess and --no-shadows need a light (give --light X,Y,Z)"};
+  }
+  if (a.ambient) r.light->ambient = *a.ambient;
+  if (a.specular) r.light->specular = *a.specular;
+  if (a.shininess) r.light->shininess = *a.shininess;
+  if (a.no_shadows) r.light->shadows = false;
+  if (a.texture) r.surfaces.texture = *a.texture;
+  if (!a.distortion.empty()) r.lens.opencv = parse_five(a.distortion, "--distortion", "k1,k2,p1,p2,k3");
+  if (!a.lens_extra.empty()) {
+    r.lens.extra = sim::LensExtras::from_array(parse_five(a.lens_extra, "--lens-extra", "k4,s1,s2,s3,s4"));
+  }
+  if (a.vignetting) r.sensor.vignetting = *a.vignetting;
+  if (a.blur) {
+    // A uniform blur (the preset's centre and corner alike) stays uniform; else --blur is the centre's.
+    if (r.defocus.corner == r.defocus.centre) r.defocus.corner = *a.blur;
+    r.defocus.centre = *a.blur;
+  }
+  if (a.defocus) r.defocus.corner = *a.defocus;
+  if (a.noise) r.sensor.read_noise = *a.noise;
+  if (a.full_well) r.sensor.full_well = *a.full_well;
+  if (a.no_shot_noise) r.sensor.full_well.reset();
+  if (a.prnu) r.sensor.prnu = *a.prnu;
+  if (a.gradient) r.sensor.gradient = *a.gradient;
+  if (a.interlace) r.interlace = true;
+  if (a.no_interlace) r.interlace = false;
+  r.sensor.seed = a.seed;
+  try {
+    r.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError{option_for(e.what())};
+  }
+  return r;
 }
 
 int sim_render_command(const SimRenderArgs& a) {
   check_camera_name(a.cam.camera);
   const sim::World world = sim::load_world(a.cam.world);
+  const bool global = a.cam.camera == "global";
+  const sim::Rendering rendering =
+      rendering_of(a.cam, global ? sim::CameraKind::global : sim::CameraKind::onboard, world.size);
   std::optional<sim::PinholeCamera> camera;
-  if (a.cam.camera == "global") {
+  if (global) {
     if (!a.pose.empty()) throw UsageError{"--pose is for the onboard camera; the global camera stays put"};
-    camera = global_camera(world, a.cam);
+    camera = global_camera(world, a.cam, rendering);
   } else {
     const sim::Pose2 pose =
         a.pose.empty() ? sim::Pose2{world.size.x() / 2, world.size.y() / 2, 0} : parse_pose(a.pose, "--pose");
     check_on_workspace(world, pose, "--pose " + a.pose);
-    camera = sim::make_onboard_camera(pose, onboard_config(a.cam));
+    camera = sim::make_onboard_camera(pose, onboard_config(a.cam, rendering, world.marble_diameter), rendering);
   }
-  const sim::MarbleRenderer renderer(image_model(a.cam), camera->size());
+  const sim::SceneRenderer renderer(rendering, *camera);
   cv::Mat frame;
-  std::vector<sim::ProjectedMarble> truth;
+  std::vector<sim::MarbleTruth> truth;
   if (a.target.empty()) {
     frame = renderer.render(world.objects, world.marble_diameter, *camera, 0);
-    truth = sim::visible_marbles(world.objects, *camera);
+    truth = sim::marble_truth(world.objects, world.marble_diameter, *camera, rendering.shape);
   } else {
     const auto [target, pose] = parse_target(a);
     frame = sim::render_target(target, pose, *camera, renderer);
     const auto points = sim::projected_target_points(target, pose, *camera);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      truth.push_back({static_cast<int>(i), points[i].x(), points[i].y()});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      truth.push_back({static_cast<int>(i), points[i].x(), points[i].y(), points[i].x(), points[i].y()});
+    }
   }
   write_image(a.cam.out, frame);
   if (!a.cam.truth.empty()) {
     std::ofstream out(a.cam.truth);
-    write_truth_header(out, a.cam.truth, false);
-    write_truth_rows(out, truth, -1);
+    if (a.target.empty()) {
+      write_truth_header(out, a.cam.truth, false);
+      write_truth_rows(out, truth, -1);
+    } else {
+      if (!out) throw std::runtime_error(a.cam.truth + ": cannot be written");
+      out << "id,u,v\n";  // points of the target's plane: no parallax to tell apart
+      for (const auto& t : truth) out << fmt::format("{},{},{}\n", t.id, t.u, t.v);
+    }
   }
   if (!a.camera_out.empty()) write_camera(*camera, a.camera_out);
-  std::cerr << fmt::format("neopipe sim render: {} camera, {}x{}, {} -> {}\n", a.cam.camera, frame.cols, frame.rows,
+  std::cerr << fmt::format("neopipe sim render: {} camera, {} realism, {}x{}, {} -> {}\n", a.cam.camera, a.cam.realism,
+                           frame.cols, frame.rows,
                            a.target.empty()
                                ? fmt::format("{} of {} marbles in view", truth.size(), world.objects.size())
                                : fmt::format("{} target, {} points", a.target, truth.size()),
@@ -273,30 +308,58 @@ int sim_render_command(const SimRenderArgs& a) {
   return kExitOk;
 }
 
+namespace {
+
+// The lossy step each preset's recorder applies to a frame: none, or JPEG at a quality.
+struct Compression {
+  std::string codec;
+  int quality = 0;
+};
+
+Compression compression_of(const SimVideoArgs& a) {
+  const sim::Realism realism = sim::parse_realism(a.cam.realism);
+  Compression c{realism == sim::Realism::ideal ? "none" : "jpeg", realism == sim::Realism::harsh ? 50 : 90};
+  if (!a.codec.empty()) c.codec = a.codec;
+  if (a.quality) {
+    if (c.codec != "jpeg") throw UsageError{"--quality is for --codec jpeg"};
+    c.quality = *a.quality;
+  }
+  return c;
+}
+
+}  // namespace
+
 int sim_video_command(const SimVideoArgs& a) {
   check_camera_name(a.cam.camera);
   const sim::World world = sim::load_world(a.cam.world);
   const bool onboard = a.cam.camera == "onboard";
+  const sim::Rendering rendering =
+      rendering_of(a.cam, onboard ? sim::CameraKind::onboard : sim::CameraKind::global, world.size);
+  const Compression compression = compression_of(a);
   std::vector<sim::Pose2> poses;
   if (onboard) {
     if (a.path.empty()) throw UsageError{"the onboard camera needs --path (CSV x,y,theta)"};
     const auto keys = read_path(a.path, world);
-    // --steps frames from each pose to the next, straight lines and turns interpolated.
+    // --steps frames from each pose to the next, straight lines and turns interpolated; twice as
+    // many instants for the odd fields of interlaced frames.
     for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-      for (int s = 0; s < a.steps; ++s) {
-        const double t = static_cast<double>(s) / a.steps;
+      for (int s = 0; s < 2 * a.steps; ++s) {
+        const double t = static_cast<double>(s) / (2 * a.steps);
         poses.push_back({keys[i].x + t * (keys[i + 1].x - keys[i].x), keys[i].y + t * (keys[i + 1].y - keys[i].y),
                          keys[i].theta + t * (keys[i + 1].theta - keys[i].theta)});
       }
     }
     poses.push_back(keys.back());
+    poses.push_back(keys.back());
   } else if (!a.path.empty()) {
     throw UsageError{"--path is for the onboard camera; the global camera films moving marbles (--frames, --speed)"};
   }
-  const auto frames = onboard ? static_cast<std::int64_t>(poses.size()) : std::int64_t{a.frames};
-  const sim::PinholeCamera fixed =
-      onboard ? sim::make_onboard_camera(poses.front(), onboard_config(a.cam)) : global_camera(world, a.cam);
-  const sim::MarbleRenderer renderer(image_model(a.cam), fixed.size());
+  const auto frames = onboard ? static_cast<std::int64_t>(poses.size() / 2) : std::int64_t{a.frames};
+  const sim::OnboardCameraConfig onboard_camera = onboard_config(a.cam, rendering, world.marble_diameter);
+  const sim::Intrinsics onboard_k = sim::onboard_intrinsics(onboard_camera, rendering);
+  const sim::PinholeCamera fixed = onboard ? sim::onboard_camera_at(poses.front(), onboard_camera, onboard_k)
+                                           : global_camera(world, a.cam, rendering);
+  const sim::SceneRenderer renderer(rendering, fixed);
 
   sim::RollingMarbles rolling(world, onboard ? 0.0 : a.speed, a.cam.seed);
 
@@ -312,19 +375,33 @@ int sim_video_command(const SimVideoArgs& a) {
   ProgressBar bar("neopipe sim video", frames, !a.quiet);
   cv::Mat bgr;
   for (std::int64_t f = 0; f < frames; ++f) {
-    const sim::PinholeCamera camera =
-        onboard ? sim::make_onboard_camera(poses[static_cast<std::size_t>(f)], onboard_config(a.cam)) : fixed;
-    const auto& marbles = rolling.positions();
-    const cv::Mat frame = renderer.render(marbles, world.marble_diameter, camera, f);
+    const auto at = static_cast<std::size_t>(2 * f);
+    const sim::PinholeCamera camera = onboard ? sim::onboard_camera_at(poses[at], onboard_camera, onboard_k) : fixed;
+    const sim::PinholeCamera odd_camera =
+        onboard ? sim::onboard_camera_at(poses[at + 1], onboard_camera, onboard_k) : fixed;
+    const std::vector<Eigen::Vector2d> marbles = rolling.positions();
+    cv::Mat frame;
+    if (rendering.interlace) {
+      rolling.step(0.5 / a.fps);  // the odd rows' instant
+      frame = renderer.render(marbles, camera, rolling.positions(), odd_camera, world.marble_diameter, f);
+      rolling.step(0.5 / a.fps);
+    } else {
+      frame = renderer.render(marbles, world.marble_diameter, camera, f);
+      rolling.step(1 / a.fps);
+    }
+    if (compression.codec == "jpeg") frame = sim::jpeg_loss(frame, compression.quality);
     cv::cvtColor(frame, bgr, cv::COLOR_GRAY2BGR);
     writer->write(bgr);
-    if (truth.is_open()) write_truth_rows(truth, sim::visible_marbles(marbles, camera), f);
-    rolling.step(1 / a.fps);
+    if (truth.is_open()) {
+      write_truth_rows(truth, sim::marble_truth(marbles, world.marble_diameter, camera, rendering.shape), f);
+    }
     bar.update(f + 1);
   }
   bar.clear();
-  std::cerr << fmt::format("neopipe sim video: {} camera, {} frames of {}x{} -> {}\n", a.cam.camera, frames,
-                           fixed.size().width, fixed.size().height, a.cam.out);
+  std::cerr << fmt::format("neopipe sim video: {} camera, {} realism, {} frames of {}x{} (codec {}{}) -> {}\n",
+                           a.cam.camera, a.cam.realism, frames, fixed.size().width, fixed.size().height,
+                           compression.codec,
+                           compression.codec == "jpeg" ? fmt::format(" {}", compression.quality) : "", a.cam.out);
   return kExitOk;
 }
 

@@ -21,6 +21,11 @@ PinholeCamera PinholeCamera::looking_down(const Intrinsics& intrinsics, const Po
 }
 
 Eigen::Vector2d PinholeCamera::distort_to_pixel(const Eigen::Vector2d& n) const {
+  if (k_.extra.any()) {
+    const Eigen::Vector2d d = distort(k_.lens(), n);
+    return {k_.fx * d.x() + k_.cx, k_.fy * d.y() + k_.cy};
+  }
+  // OpenCV's model alone, in the arithmetic these images have always been made with.
   const auto& d = k_.distortion;
   const double x = n.x();
   const double y = n.y();
@@ -57,6 +62,7 @@ Eigen::Matrix2d PinholeCamera::plane_jacobian(const Eigen::Vector2d& p) const {
 Eigen::Vector2d PinholeCamera::undistort(const Eigen::Vector2d& pixel) const {
   Eigen::Vector2d target((pixel.x() - k_.cx) / k_.fx, (pixel.y() - k_.cy) / k_.fy);
   const auto& d = k_.distortion;
+  if (k_.extra.any()) return sim::undistort(k_.lens(), target, target);
   if (d[0] == 0 && d[1] == 0 && d[2] == 0 && d[3] == 0 && d[4] == 0) return target;
   // Newton on distort(n) = target, with a numeric Jacobian: converges in a few steps for the mild
   // distortions cameras have, where OpenCV's fixed-point iteration needs more.
@@ -78,12 +84,16 @@ Eigen::Vector2d PinholeCamera::undistort(const Eigen::Vector2d& pixel) const {
 }
 
 std::optional<Eigen::Vector2d> PinholeCamera::plane_point(const Eigen::Vector2d& pixel) const {
+  return plane_point(pixel, 0.0);
+}
+
+std::optional<Eigen::Vector2d> PinholeCamera::plane_point(const Eigen::Vector2d& pixel, double h) const {
   const Eigen::Vector2d n = undistort(pixel);
-  // Ray X = C + s R^T (n, 1); C = -R^T t. Meet z = 0.
+  // Ray X = C + s R^T (n, 1); C = -R^T t. Meet z = h.
   const Eigen::Vector3d centre = -r_.transpose() * t_;
   const Eigen::Vector3d dir = r_.transpose() * Eigen::Vector3d(n.x(), n.y(), 1);
   if (std::abs(dir.z()) < 1e-15) return std::nullopt;
-  const double s = -centre.z() / dir.z();
+  const double s = (h - centre.z()) / dir.z();
   if (s <= 0) return std::nullopt;
   const Eigen::Vector3d x = centre + s * dir;
   return Eigen::Vector2d(x.x(), x.y());
@@ -97,6 +107,12 @@ cv::Mat PinholeCamera::camera_matrix() const {
 cv::Mat PinholeCamera::distortion_coefficients() const {
   const auto& d = k_.distortion;
   cv::Mat m = (cv::Mat_<double>(1, 5) << d[0], d[1], d[2], d[3], d[4]);
+  return m;
+}
+
+cv::Mat PinholeCamera::extra_distortion_coefficients() const {
+  const auto& e = k_.extra;
+  cv::Mat m = (cv::Mat_<double>(1, 5) << e.k4, e.s1, e.s2, e.s3, e.s4);
   return m;
 }
 

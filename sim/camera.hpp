@@ -1,13 +1,15 @@
 #pragma once
 // A pinhole camera with OpenCV's lens distortion model (k1, k2, p1, p2, k3), looking at the
 // workspace plane z = 0 (world x East, y North, z up, millimetres). The same model as
-// cv::projectPoints, so calibration can be checked against the truth it was rendered from.
+// cv::projectPoints, so calibration can be checked against the truth it was rendered from; with
+// LensExtras (sim/lens.hpp) it is a lens that model cannot fit exactly.
 
 #include <Eigen/Core>
 #include <array>
 #include <opencv2/core/mat.hpp>
 #include <optional>
 
+#include "sim/lens.hpp"
 #include "sim/pose2.hpp"
 
 namespace neopipe::sim {
@@ -19,6 +21,10 @@ struct Intrinsics {
   double cy = 479.5;
   std::array<double, 5> distortion{};  ///< k1, k2, p1, p2, k3
   cv::Size size{1280, 960};
+  LensExtras extra{};  ///< terms beyond OpenCV's five (none: exactly OpenCV's model)
+
+  [[nodiscard]] Lens lens() const { return {distortion, extra}; }
+  bool operator==(const Intrinsics&) const = default;
 };
 
 class PinholeCamera {
@@ -38,6 +44,10 @@ class PinholeCamera {
   /// The point of the plane z = 0 seen at pixel (u, v) (lens distortion inverted), or nothing if that
   /// ray does not meet the plane in front of the camera.
   [[nodiscard]] std::optional<Eigen::Vector2d> plane_point(const Eigen::Vector2d& pixel) const;
+  /// The same for the plane z = h: (x, y) of the point at that height seen at the pixel.
+  [[nodiscard]] std::optional<Eigen::Vector2d> plane_point(const Eigen::Vector2d& pixel, double h) const;
+  /// The camera's centre in world coordinates.
+  [[nodiscard]] Eigen::Vector3d centre() const { return -r_.transpose() * t_; }
   /// Normalised undistorted coordinates (x/z, y/z) of the ray through a pixel.
   [[nodiscard]] Eigen::Vector2d undistort(const Eigen::Vector2d& pixel) const;
   /// Applies the lens model to normalised coordinates and returns the pixel.
@@ -50,6 +60,8 @@ class PinholeCamera {
   /// OpenCV's 3x3 camera matrix and 1x5 distortion coefficients (CV_64F).
   [[nodiscard]] cv::Mat camera_matrix() const;
   [[nodiscard]] cv::Mat distortion_coefficients() const;
+  /// The terms beyond those five, 1x5 CV_64F: k4, s1, s2, s3, s4 (sim/lens.hpp).
+  [[nodiscard]] cv::Mat extra_distortion_coefficients() const;
 
  private:
   Intrinsics k_;

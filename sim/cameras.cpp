@@ -1,9 +1,12 @@
 #include "sim/cameras.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace neopipe::sim {
 namespace {
@@ -53,13 +56,57 @@ PinholeCamera make_global_camera(const Eigen::Vector2d& workspace, const GlobalC
   return {k, r, t};
 }
 
+PinholeCamera make_global_camera(const Eigen::Vector2d& workspace, const GlobalCameraConfig& config,
+                                 const Rendering& rendering) {
+  GlobalCameraConfig c = config;
+  c.distortion = rendering.lens.opencv;
+  const PinholeCamera camera = make_global_camera(workspace, c);
+  Intrinsics k = camera.intrinsics();
+  k.extra = rendering.lens.extra;
+  check_lens_unfolded(k);
+  return {k, camera.rotation(), camera.translation()};
+}
+
 PinholeCamera make_onboard_camera(const Pose2& pose, const OnboardCameraConfig& c) {
   Intrinsics k;
   k.size = {c.side_px, c.side_px};
   k.fx = k.fy = c.side_px / c.window_mm * c.height;
   k.cx = k.cy = (c.side_px - 1) / 2.0;
   k.distortion = c.distortion;
-  return PinholeCamera::looking_down(k, pose, c.height);
+  return PinholeCamera::looking_down(k, pose, c.window_plane_z + c.height);
+}
+
+PinholeCamera make_onboard_camera(const Pose2& pose, const OnboardCameraConfig& config, const Rendering& rendering) {
+  return onboard_camera_at(pose, config, onboard_intrinsics(config, rendering));
+}
+
+Intrinsics onboard_intrinsics(const OnboardCameraConfig& config, const Rendering& rendering) {
+  OnboardCameraConfig c = config;
+  c.distortion = rendering.lens.opencv;
+  Intrinsics k = make_onboard_camera({}, c).intrinsics();
+  k.extra = rendering.lens.extra;
+  check_lens_unfolded(k);
+  return k;
+}
+
+PinholeCamera onboard_camera_at(const Pose2& pose, const OnboardCameraConfig& config, const Intrinsics& intrinsics) {
+  return PinholeCamera::looking_down(intrinsics, pose, config.window_plane_z + config.height);
+}
+
+void check_lens_unfolded(const Intrinsics& k) {
+  // The corners' normalised radius as if undistorted, with a margin for barrel distortion pushing
+  // the scene's corners further out than the image's.
+  double field = 0;
+  for (const double u : {-0.5, k.size.width - 0.5}) {
+    for (const double v : {-0.5, k.size.height - 0.5})
+      field = std::max(field, std::hypot((u - k.cx) / k.fx, (v - k.cy) / k.fy));
+  }
+  field *= 1.25;
+  if (const auto fold = lens_fold_radius(k.lens(), field)) {
+    throw std::invalid_argument(fmt::format(
+        "lens: the distortion folds the image at normalised radius {:.3f}, inside its corners ({:.3f} with a margin)",
+        *fold, field));
+  }
 }
 
 }  // namespace neopipe::sim

@@ -10,6 +10,7 @@
 
 #include "sim/camera.hpp"
 #include "sim/marble_renderer.hpp"
+#include "sim/scene_renderer.hpp"
 
 namespace neopipe::sim {
 
@@ -25,6 +26,8 @@ struct CalibrationTarget {
 
 /// Where the target lies: target point (s, t, 0) (mm, s along its rows, t along its columns, from
 /// the first dot or the board's first inner corner) is at world rotation * (s, t, 0) + translation.
+/// This is the printed face: a board of thickness h lying flat on the table has its face at z = h,
+/// so its pose is target_pose(x, y, h, theta) (the board's edges are not drawn).
 struct TargetPose {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
@@ -46,5 +49,11 @@ std::vector<Eigen::Vector2d> projected_target_points(const CalibrationTarget& ta
 /// One 8-bit frame of the target on the workspace, exposed by `renderer` (its model and size).
 cv::Mat render_target(const CalibrationTarget& target, const TargetPose& pose, const PinholeCamera& camera,
                       const MarbleRenderer& renderer, std::int64_t frame = 0);
+/// The same under `renderer`'s Rendering: the printed face is matte (Lambertian, no highlight) under
+/// the same light as the marbles, the table around it textured and lit, and the frame goes through
+/// the same lens (the camera's), defocus, vignetting and sensor. The board casts no shadow. Under
+/// ImageModel settings (the ideal preset), the MarbleRenderer overload's image exactly.
+cv::Mat render_target(const CalibrationTarget& target, const TargetPose& pose, const PinholeCamera& camera,
+                      const SceneRenderer& renderer, std::int64_t frame = 0);
 
 }  // namespace neopipe::sim

@@ -23,9 +23,10 @@ class CalibrateCli : public ScratchDirTest {
     ASSERT_EQ(run_neopipe({"sim", "world", "--objects", "120", "--seed", "4", "--out", file("w.yaml")}).exit_code, 0);
     const std::vector<std::string> poses{"75,75,0,0", "80,70,40,3,20,0", "70,80,30,-3,0,22", "80,80,50,2,-15,12"};
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      const auto r = run_neopipe({"sim", "render", "--world", file("w.yaml"), "--target", "dots", "--target-grid",
-                                  "15x15", "--pitch", "25", "--dot-diameter", "9", "--target-pose", poses[i], "--seed",
-                                  std::to_string(i + 1), "--out", file("view" + std::to_string(i) + ".png")});
+      const auto r =
+          run_neopipe({"sim", "render", "--realism=ideal", "--world", file("w.yaml"), "--target", "dots",
+                       "--target-grid", "15x15", "--pitch", "25", "--dot-diameter", "9", "--target-pose", poses[i],
+                       "--seed", std::to_string(i + 1), "--out", file("view" + std::to_string(i) + ".png")});
       ASSERT_EQ(r.exit_code, 0) << r.err;
     }
   }
@@ -47,7 +48,9 @@ TEST_F(CalibrateCli, DotGridViewsToWorkspacePositions) {
     fs["camera_matrix"] >> k;
     EXPECT_NEAR(k.at<double>(0, 0), 1744.3, 0.01 * 1744.3);  // the simulator's default global camera
   }
-  ASSERT_EQ(run_neopipe({"sim", "render", "--world", file("w.yaml"), "--out", file("marbles.png")}).exit_code, 0);
+  ASSERT_EQ(run_neopipe({"sim", "render", "--realism=ideal", "--world", file("w.yaml"), "--out", file("marbles.png")})
+                .exit_code,
+            0);
   const auto run =
       run_neopipe({"run", file("marbles.png"), "--graph", std::string(NEOPIPE_EXAMPLES_DIR) + "/marbles.yaml",
                    "--calib", file("calib.yaml"), "-q"});
@@ -132,7 +135,9 @@ TEST_F(CalibrateCli, PointPairsGiveAHomography) {
 TEST_F(CalibrateCli, BadInputIsOneLineAndNonZero) {
   make_views();
   // A view without the target is skipped and counted...
-  ASSERT_EQ(run_neopipe({"sim", "render", "--world", file("w.yaml"), "--out", file("marbles.png")}).exit_code, 0);
+  ASSERT_EQ(run_neopipe({"sim", "render", "--realism=ideal", "--world", file("w.yaml"), "--out", file("marbles.png")})
+                .exit_code,
+            0);
   const auto skipped = run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"), file("marbles.png"),
                                     file("view1.png"), file("view2.png"), "--out", file("c.yaml"), "-q"});
   EXPECT_EQ(skipped.exit_code, 0) << skipped.err;
@@ -142,10 +147,10 @@ TEST_F(CalibrateCli, BadInputIsOneLineAndNonZero) {
   EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("marbles.png"),
                                           file("view0.png"), "--out", file("c.yaml")}),
                              "not found in the first image"));
-  ASSERT_EQ(
-      run_neopipe({"sim", "render", "--world", file("w.yaml"), "--resolution", "640x480", "--out", file("small.png")})
-          .exit_code,
-      0);
+  ASSERT_EQ(run_neopipe({"sim", "render", "--realism=ideal", "--world", file("w.yaml"), "--resolution", "640x480",
+                         "--out", file("small.png")})
+                .exit_code,
+            0);
   EXPECT_TRUE(one_error_line(run_neopipe({"calibrate", "--target", "dots:15x15:25mm", file("view0.png"),
                                           file("small.png"), "--out", file("c.yaml")}),
                              "every view must come from the same camera"));

@@ -24,8 +24,8 @@ class SimCli : public ScratchDirTest {};
 TEST_F(SimCli, NoiselessGlobalFrameGivesEveryMarbleOnItsTruth) {
   const auto w = run_neopipe({"sim", "world", "--objects", "250", "--seed", "9", "--out", file("w.yaml")});
   ASSERT_EQ(w.exit_code, 0) << w.err;
-  const auto r = run_neopipe({"sim", "render", "--world", file("w.yaml"), "--noise", "0", "--out", file("g.png"),
-                              "--truth", file("truth.csv"), "--camera-out", file("camera.yml")});
+  const auto r = run_neopipe({"sim", "render", "--realism", "ideal", "--world", file("w.yaml"), "--noise", "0", "--out",
+                              file("g.png"), "--truth", file("truth.csv"), "--camera-out", file("camera.yml")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto run = run_neopipe({"run", file("g.png"), "--graph", std::string(NEOPIPE_EXAMPLES_DIR) + "/marbles.yaml",
                                 "-q", "--out", file("blobs.csv")});
@@ -34,7 +34,7 @@ TEST_F(SimCli, NoiselessGlobalFrameGivesEveryMarbleOnItsTruth) {
   std::string bh;
   const auto truth = csv_numbers(slurp(file("truth.csv")), &th);
   const auto blobs = csv_numbers(slurp(file("blobs.csv")), &bh);
-  EXPECT_EQ(th, "id,u,v");
+  EXPECT_EQ(th, "id,u,v,u0,v0");
   ASSERT_EQ(truth.size(), 250U);
   ASSERT_EQ(blobs.size(), 250U);
   double sum2 = 0;
@@ -93,7 +93,7 @@ TEST_F(SimCli, OnboardVideoAlongAPath) {
   EXPECT_EQ(static_cast<int>(cap.get(cv::CAP_PROP_FRAME_WIDTH)), 256);
   std::string header;
   (void)csv_numbers(slurp(file("t.csv")), &header);
-  EXPECT_EQ(header, "frame,id,u,v");
+  EXPECT_EQ(header, "frame,id,u,v,u0,v0");
   const auto g = run_neopipe({"sim", "video", "--world", file("w.yaml"), "--frames", "5", "--resolution", "320x240",
                               "--out", file("global.avi")});
   EXPECT_EQ(g.exit_code, 0) << g.err;

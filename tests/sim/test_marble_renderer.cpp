@@ -187,7 +187,7 @@ TEST(PatchBlur, EqualsOpenCVSeparableFilterWithZerosAround) {
 TEST(SimCameraSource, GivesTheRenderersFramesAlongAPath) {
   const sim::World world = test_world();
   const std::vector<sim::Pose2> path{{100, 100, 0}, {120, 100, 0.1}, {140, 110, 0.2}};
-  auto source = sim::onboard_path_source(world, {}, {}, path, neopipe::pipeline::io::ColorFormat::gray);
+  auto source = sim::onboard_path_source(world, {}, sim::ImageModel{}, path, neopipe::pipeline::io::ColorFormat::gray);
   EXPECT_EQ(source->frame_count(), 3);
   const sim::MarbleRenderer r(sim::ImageModel{}, {256, 256});
   for (std::int64_t i = 0; i < 3; ++i) {
@@ -199,6 +199,6 @@ TEST(SimCameraSource, GivesTheRenderersFramesAlongAPath) {
     EXPECT_EQ(cv::norm(f->image, expected, cv::NORM_INF), 0);
   }
   EXPECT_FALSE(source->next());
-  auto bgr = sim::onboard_path_source(world, {}, {}, path, neopipe::pipeline::io::ColorFormat::bgr);
+  auto bgr = sim::onboard_path_source(world, {}, sim::ImageModel{}, path, neopipe::pipeline::io::ColorFormat::bgr);
   EXPECT_EQ(bgr->next()->image.type(), CV_8UC3);
 }
