@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -12,11 +13,13 @@
 #include "apps/nav_video.hpp"
 #include "apps/progress.hpp"
 #include "nav/mapmaker/map_maker.hpp"
+#include "rig/calibration_cache.hpp"
 #include "rig/experiment.hpp"
 #include "rig/journey.hpp"
 #include "rig/park_kender.hpp"
 #include "rig/survey.hpp"
 #include "rig/trials.hpp"
+#include "sim/realism.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::apps {
@@ -53,26 +56,48 @@ Setup make_setup(const NavArgs& a) {
     throw mm::MapError(
         fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
   }
-  s.survey =
-      a.sigma_map ? rig::gaussian_survey(s.world, *a.sigma_map, a.seed) : rig::global_camera_survey(s.world, a.seed);
+  const sim::Realism realism = sim::parse_realism(a.realism);  // checked by the option already
+  if (a.sigma_map) {
+    s.survey = rig::gaussian_survey(s.world, *a.sigma_map, a.seed);
+  } else {
+    rig::SurveySettings survey;
+    survey.camera.realism = realism;
+    survey.camera.seed = a.seed;
+    if (!a.no_cache) {
+      survey.cache_dir = a.cache_dir.empty() ? rig::CalibrationCache::default_dir()
+                                             : std::optional<std::filesystem::path>(a.cache_dir);
+    }
+    survey.note = [](const std::string& line) { std::cerr << "neopipe nav: " << line << '\n'; };
+    s.survey = rig::global_camera_survey(s.world, survey);
+  }
   rig::ExperimentConfig config;
   config.window = a.window;
   config.arm = {a.sigma_move, a.sigma_rot};
   config.recovery = !a.no_recovery;
   config.seed = a.seed;
+  config.realism = realism;
   s.settings = rig::derive_settings(config, s.survey.sigma);
   return s;
 }
 
 json survey_json(const rig::Survey& s) {
-  return {{"method", s.method}, {"sigma", s.sigma}, {"rms_error", s.rms_error}, {"max_error", s.max_error}};
+  json j = {{"method", s.method}, {"sigma", s.sigma}, {"rms_error", s.rms_error}, {"max_error", s.max_error}};
+  if (s.session) {
+    j["realism"] = s.realism;
+    j["plate_held_out_rms"] = s.session->plate_held_out_mm.rms;
+    j["centroid_lean_held_out_px"] = s.session->bias_held_out_px.rms;
+    j["calibration_held_out_rms"] = s.session->calibration.report.held_out.rms;
+    j["board_thickness"] = s.session->plane_height;
+  }
+  return j;
 }
 
 std::string survey_line(const rig::Survey& s) {
   return fmt::format(
       "survey: {}, position sd {:.4f} mm as the map-maker is told; against the truth RMS {:.4f} mm, max {:.4f} mm",
-      s.method == "global_camera" ? "global camera + calibration" : "Gaussian error", s.sigma, s.rms_error,
-      s.max_error);
+      s.method == "global_camera" ? fmt::format("global camera ({} realism) + calibration", s.realism)
+                                  : std::string("Gaussian error"),
+      s.sigma, s.rms_error, s.max_error);
 }
 
 // "TRAJP 47 -> 75": the step a journey first went wrong at, for grouping failures by kind.
@@ -297,6 +322,16 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--sigma-map", a.sigma_map,
                   "Survey by moving each object N(0, S) mm per axis instead of through the global camera and its "
                   "calibration (the default)");
+  cmd->add_option("--realism", a.realism,
+                  "How real the simulated cameras are: ideal (flat disks, OpenCV's lens: what the models assume), rig "
+                  "(spheres under a lamp, a lens and sensor the models do not fit exactly), harsh")
+      ->check(CLI::IsMember({"ideal", "rig", "harsh"}))
+      ->capture_default_str();
+  cmd->add_option("--calibration-cache", a.cache_dir,
+                  "Folder of cached global camera calibrations (default: $NEOPIPE_CACHE_DIR, $XDG_CACHE_HOME/neopipe "
+                  "or ~/.cache/neopipe)")
+      ->type_name("DIR");
+  cmd->add_flag("--no-calibration-cache", a.no_cache, "Calibrate the global camera afresh, and cache nothing");
   cmd->add_option("--sigma-move", a.sigma_move, "Arm's translation error, sd mm per mm moved")->capture_default_str();
   cmd->add_option("--sigma-rot", a.sigma_rot, "Arm's heading error, sd degrees per mm moved")->capture_default_str();
   cmd->add_option(

@@ -19,6 +19,9 @@ struct NavArgs {
   /// of 1,000 (docs/navigation-experiments.md).
   std::string cost = "reliability";
   std::optional<double> sigma_map;  ///< none: the survey goes through the global camera and calibration
+  std::string realism = "rig";      ///< both cameras' realism preset
+  std::string cache_dir;            ///< of calibration sessions; empty: the default folder
+  bool no_cache = false;
   double sigma_move = 0.003;
   double sigma_rot = 0.002;
   std::uint64_t seed = 1;

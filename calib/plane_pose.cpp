@@ -71,4 +71,23 @@ std::vector<Eigen::Vector2d> to_world_at_height(const Calibration& c, const std:
   return out;
 }
 
+std::vector<Eigen::Vector2d> to_pixel_at_height(const Calibration& c, const std::vector<Eigen::Vector2d>& world,
+                                                double height) {
+  if (height == 0) return c.to_pixel(world);
+  const PlanePose pose = plane_pose(c);
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(world.size());
+  if (world.empty()) return out;
+  std::vector<cv::Point3d> points;  // camera coordinates
+  points.reserve(world.size());
+  for (const auto& w : world) {
+    const Eigen::Vector3d x = w.x() * pose.x_axis + w.y() * pose.y_axis + height * pose.z_axis + pose.origin;
+    points.emplace_back(x.x(), x.y(), x.z());
+  }
+  std::vector<cv::Point2d> px;
+  cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), c.camera_matrix, c.distortion_coefficients, px);
+  for (const auto& p : px) out.emplace_back(p.x, p.y);
+  return out;
+}
+
 }  // namespace neopipe::calib

@@ -31,4 +31,9 @@ PlanePose plane_pose(const Calibration& calibration);
 std::vector<Eigen::Vector2d> to_world_at_height(const Calibration& calibration,
                                                 const std::vector<Eigen::Vector2d>& pixels, double height);
 
+/// Where points at plane coordinates `world` (mm), `height` mm above the calibrated plane, appear in
+/// the image (px): the inverse of to_world_at_height. Throws as it does.
+std::vector<Eigen::Vector2d> to_pixel_at_height(const Calibration& calibration,
+                                                const std::vector<Eigen::Vector2d>& world, double height);
+
 }  // namespace neopipe::calib

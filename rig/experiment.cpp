@@ -39,6 +39,7 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
   s.navigator.view_margin = border_band;
   s.navigator.recovery = c.recovery;
   s.journey.errors = c.arm;
+  s.journey.realism = c.realism;
   s.journey.seed = c.seed;
   return s;
 }

@@ -19,8 +19,9 @@ namespace neopipe::rig {
 struct ExperimentConfig {
   double window = 50;  ///< view window side a, mm
   ArmErrors arm;
-  bool recovery = true;    ///< the navigator applies the map's recovery rules
-  std::uint64_t seed = 1;  ///< arm errors and camera noise (journey i: trial_seed(seed, i))
+  bool recovery = true;                      ///< the navigator applies the map's recovery rules
+  sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera (the survey has its own)
+  std::uint64_t seed = 1;                    ///< arm errors and camera noise (journey i: trial_seed(seed, i))
 };
 
 /// mm: how far the navigator may misjudge a marble cut by its image border (its centre from the cap)

@@ -62,7 +62,7 @@ JourneyResult run_journey(const NavigationSystem& system, const Plan& plan, cons
   station_settings.motion = motion_errors(settings.errors);
   station_settings.camera.side_px = request.side_px;
   station_settings.camera.window_mm = request.window_mm;
-  station_settings.image = settings.image;
+  station_settings.realism = settings.realism;
   station_settings.seed = settings.seed;
   const Vector2d start = world.objects.at(plan.start) + plan.start_offset;
   Station station(world, station_settings, sim::Pose2{start.x(), start.y(), 0});

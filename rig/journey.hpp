@@ -35,8 +35,8 @@ struct JourneyResult {
 /// The journey's simulated equipment, apart from what the system's camera request fixes.
 struct JourneySettings {
   ArmErrors errors;
-  sim::ImageModel image;   ///< the onboard camera's exposure
-  std::uint64_t seed = 1;  ///< arm errors and camera noise of this journey
+  sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera
+  std::uint64_t seed = 1;                    ///< arm errors and camera noise of this journey
 };
 
 /// Judges a journey from its claims: the last claim of each entry counts (a recovery may hold an

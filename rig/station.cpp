@@ -61,10 +61,13 @@ Station::Station(const sim::World& world, const StationSettings& settings, const
            start),
       adapter_(std::make_unique<ArmAdapter>(arm_, log_)) {
   log_.track.emplace_back(start.x, start.y);
-  sim::ImageModel image = settings.image;
-  image.seed = stream_seed(settings.seed, streams::onboard_camera);
+  sim::Rendering rendering = settings.rendering
+                                 ? *settings.rendering
+                                 : sim::rendering_for(settings.realism, sim::CameraKind::onboard, world.size);
+  rendering.sensor.seed = stream_seed(settings.seed, streams::onboard_camera);
+  const sim::OnboardCameraConfig camera = sim::onboard_config_for(rendering, world.marble_diameter, settings.camera);
   camera_ = sim::onboard_camera_source(
-      world_, settings.camera, image, [this] { return arm_.pose(); }, pipeline::io::ColorFormat::gray);
+      world_, camera, rendering, [this] { return arm_.pose(); }, pipeline::io::ColorFormat::gray);
 }
 
 Station::~Station() = default;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "nav/common/arm.hpp"
@@ -15,8 +16,9 @@
 #include "sim/arm/scara.hpp"
 #include "sim/arm/simulated_arm.hpp"
 #include "sim/cameras.hpp"
-#include "sim/image_model.hpp"
 #include "sim/pose2.hpp"
+#include "sim/realism.hpp"
+#include "sim/rendering.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::sim {
@@ -40,10 +42,11 @@ sim::MotionErrors motion_errors(const ArmErrors& errors);
 sim::ScaraGeometry arm_for_world(const sim::World& world, double window_side);
 
 struct StationSettings {
-  sim::MotionErrors motion;         ///< the arm's errors (motion_errors(ArmErrors) for an experiment's)
-  sim::OnboardCameraConfig camera;  ///< image size and view window
-  sim::ImageModel image;            ///< how the onboard camera exposes (its seed is replaced)
-  std::uint64_t seed = 1;           ///< this journey's arm errors and camera noise (two streams)
+  sim::MotionErrors motion;                  ///< the arm's errors (motion_errors(ArmErrors) for an experiment's)
+  sim::OnboardCameraConfig camera;           ///< image size and view window (its plane follows the rendering)
+  sim::Realism realism = sim::Realism::rig;  ///< the onboard camera's preset ...
+  std::optional<sim::Rendering> rendering;   ///< ... or these settings (their noise seed is replaced)
+  std::uint64_t seed = 1;                    ///< this journey's arm errors and camera noise (two streams)
 };
 
 /// What the arm did, as the truth has it.

@@ -237,10 +237,12 @@ TEST(PlanePose, PointsAboveThePlaneAreFoundAtTheirHeight) {
         }
       }
       const auto found = calib::to_world_at_height(c, pixels, h);
+      const auto back = calib::to_pixel_at_height(c, truth, h);
       const auto flat = c.to_world(pixels);
       double parallax = 0;
       for (std::size_t i = 0; i < truth.size(); ++i) {
         EXPECT_LT((found[i] - truth[i]).norm(), 1e-6) << "plane " << plane_z << " height " << h << " point " << i;
+        EXPECT_LT((back[i] - pixels[i]).norm(), 1e-6) << "plane " << plane_z << " height " << h << " point " << i;
         parallax = std::max(parallax, (flat[i] - truth[i]).norm());
       }
       // At the workspace's edge 1000 mm below a tilted camera, 2.5 mm of height is ~0.7 mm of parallax.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 
 #include "cli_test_support.hpp"
@@ -19,6 +20,11 @@ constexpr const char* kSmallWorld =
 
 class NavCli : public ScratchDirTest {
  protected:
+  void SetUp() override {
+    ScratchDirTest::SetUp();
+    // Calibration sessions cached where this test cleans up, not in the user's cache.
+    ::setenv("NEOPIPE_CACHE_DIR", file("cache").c_str(), 1);  // NOLINT(concurrency-mt-unsafe): one thread
+  }
   std::string small_world() {
     write_text(file("small.yaml"), kSmallWorld);
     return file("small.yaml");
@@ -36,7 +42,8 @@ TEST_F(NavCli, HelpNamesTheOptions) {
   const auto r = run_neopipe({"nav", "--help"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* option : {"--world", "--from", "--to", "--cost", "--sigma-map", "--sigma-move", "--sigma-rot",
-                             "--seed", "--trials", "--no-recovery", "--window", "--json", "--plot", "--video"}) {
+                             "--seed", "--trials", "--no-recovery", "--window", "--json", "--plot", "--video",
+                             "--realism", "--calibration-cache", "--no-calibration-cache"}) {
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
   }
 }
@@ -65,7 +72,7 @@ TEST_F(NavCli, OneErrorFreeJourneyOnASmallWorldSucceeds) {
   EXPECT_NE(text.out.find("custom map:"), std::string::npos);
   EXPECT_NE(text.out.find("outcome: "), std::string::npos);
   // Without --sigma-map the map-maker's survey goes through the rig: global camera, engine, calibration.
-  EXPECT_NE(text.out.find("survey: global camera + calibration"), std::string::npos);
+  EXPECT_NE(text.out.find("survey: global camera (rig realism) + calibration"), std::string::npos);
 }
 
 TEST_F(NavCli, LandmarkBasedPathsCanBeFollowed) {
@@ -117,6 +124,46 @@ TEST_F(NavCli, TrialsCountEveryJourneyOnceAndRepeatBySeed) {
   EXPECT_LE(a["mean_planned_reliability"].get<double>(), 1.0);
   EXPECT_EQ(a["cost"], "reliability");  // the default: a journey's job is to arrive
   EXPECT_EQ(run("2"), a);               // same seed, any thread count: the same journeys
+}
+
+// Both cameras' realism is chosen on the command line; the survey says which it used. The global
+// camera's calibration session is cached: the second run reads it, a corrupt entry is recalibrated
+// with a note, and --no-calibration-cache writes nothing.
+TEST_F(NavCli, RealismAndTheCalibrationCache) {
+  const std::string world = small_world();
+  const auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"nav", "--world", world, "--from", "0", "--to", "2", "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_neopipe(args);
+  };
+  const auto rig = run({});
+  ASSERT_EQ(rig.exit_code, 0) << rig.err;
+  const json a = json::parse(rig.out);
+  EXPECT_EQ(a["survey"]["realism"], "rig");
+  EXPECT_EQ(a["survey"]["board_thickness"], 3.0);
+  EXPECT_LT(a["survey"]["rms_error"].get<double>(), 0.05);
+  std::vector<fs::path> entries;
+  for (const auto& e : fs::directory_iterator(file("cache"))) entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1U);
+
+  const auto again = run({});
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(json::parse(again.out)["survey"], a["survey"]);  // the same session, read back
+
+  write_text(entries[0].string(), "%YAML:1.0\n---\nmodel: [\n");
+  const auto corrupt = run({});
+  ASSERT_EQ(corrupt.exit_code, 0) << corrupt.err;
+  EXPECT_NE(corrupt.err.find("corrupt cached calibration"), std::string::npos) << corrupt.err;
+  EXPECT_EQ(json::parse(corrupt.out)["survey"], a["survey"]);
+
+  const auto ideal = run({"--realism", "ideal", "--calibration-cache", file("other")});
+  ASSERT_EQ(ideal.exit_code, 0) << ideal.err;
+  EXPECT_EQ(json::parse(ideal.out)["survey"]["realism"], "ideal");
+  EXPECT_TRUE(fs::exists(file("other")));
+  const auto uncached = run({"--no-calibration-cache", "--calibration-cache", file("none")});
+  ASSERT_EQ(uncached.exit_code, 0) << uncached.err;
+  EXPECT_FALSE(fs::exists(file("none")));
+  EXPECT_TRUE(one_error_line(run({"--realism", "real"}), "--realism"));
 }
 
 TEST_F(NavCli, BadInputIsOneLineError) {

@@ -56,32 +56,6 @@ TEST(Rig, SurveyIsExactAtZeroSigmaAndSeededOtherwise) {
   EXPECT_GT(rig::gaussian_survey(world, 1, 3).rms_error, 0);
 }
 
-// The rig's survey (global camera, engine, calibration) finds every marble of a default world under
-// its own id, to the calibration's accuracy (docs/calibration.md: sd 0.005 mm per axis), and says
-// how good it is from the calibration alone.
-TEST(Rig, GlobalCameraSurveyFindsEveryMarbleToHundredthsOfAMillimetre) {
-  neopipe::sim::WorldRequest q;
-  q.objects = 100;
-  q.seed = 1;
-  const auto world = neopipe::sim::generate_world(q);
-  const rig::Survey s = rig::global_camera_survey(world, 7);
-  EXPECT_EQ(s.method, "global_camera");
-  ASSERT_EQ(s.workspace.objects.size(), world.objects.size());
-  EXPECT_LT(s.rms_error, 0.03);
-  EXPECT_LT(s.max_error, 0.1);
-  EXPECT_GT(s.rms_error, 0);  // a real measurement, not the truth handed over
-  EXPECT_GT(s.sigma, 0);
-  EXPECT_LT(s.sigma, 0.03);
-  EXPECT_EQ(rig::global_camera_survey(world, 7).workspace.objects, s.workspace.objects);
-}
-
-TEST(Rig, GlobalCameraSurveyRefusesMarblesItCannotTellApart) {
-  neopipe::sim::World w;
-  w.size = {500, 500};
-  w.objects = {{100, 100}, {105, 100}, {300, 300}};  // the first two touch
-  EXPECT_THROW(rig::global_camera_survey(w, 1), rig::SurveyError);
-}
-
 TEST(Rig, ArmReachesOneWindowBeyondTheWorld) {
   const auto world = small_world();
   const neopipe::sim::Scara arm(rig::arm_for_world(world, 50));

@@ -18,7 +18,7 @@ struct RigOptions {
   double window = 50;
   sim::MotionErrors errors;
   std::uint64_t seed = 1;
-  sim::ImageModel image;
+  sim::Realism realism = sim::Realism::rig;
 };
 
 class Rig {
@@ -63,7 +63,7 @@ class Rig {
     s.motion = o.errors;
     s.camera.side_px = NavigatorConfig{}.camera.side_px;
     s.camera.window_mm = o.window;
-    s.image = o.image;
+    s.realism = o.realism;
     s.seed = o.seed;
     return s;
   }

@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iostream>
+
 #include "nav/navigator/navigator.hpp"
+#include "sim/realism.hpp"
 #include "sim/world.hpp"
 #include "sim_rig.hpp"
 
@@ -21,28 +25,43 @@ std::vector<Eigen::Vector2d> truth_in_window(const sim::World& world, const Eige
   return out;
 }
 
-TEST(Eye, CentroidsMatchTheWorldWithinAFifthOfAMillimetre) {
+// The eye's error on whole marbles clear of the border and on marbles near it (whether it counts
+// them in view or not), over 40 windows of a dense world.
+struct CentroidErrors {
+  double clear_rms = 0;
+  double clear_worst = 0;
+  double border_worst = 0;
+  int compared = 0;
+};
+
+CentroidErrors centroid_errors(sim::Realism realism) {
   sim::WorldRequest request;
   request.objects = 400;
   request.size = {300, 300};
   request.seed = 5;
-  Rig rig(sim::generate_world(request));
+  test_rig::RigOptions options;
+  options.realism = realism;
+  Rig rig(sim::generate_world(request), options);
   const double a = rig.config().window.side;
-  int compared = 0;
+  CentroidErrors e;
+  double sum2 = 0;
   for (int i = 0; i < 40; ++i) {
     const Eigen::Vector2d origin(20 + 5.3 * i, 30 + 4.1 * i);
     rig.place(origin);
     const Sighting seen = rig.eye().look();
+    std::vector<Eigen::Vector2d> all = seen.objects;
+    all.insert(all.end(), seen.partial.begin(), seen.partial.end());
     for (const Eigen::Vector2d& q : truth_in_window(rig.world(), origin, a)) {
       // Marbles cut by the border are located less well; the margin keeps the landmarks clear of it.
       const bool clear = q.x() > 2.5 && q.x() < a - 2.5 && q.y() > 2.5 && q.y() < a - 2.5;
       double best = 1e9;
-      for (const Eigen::Vector2d& p : seen.objects) best = std::min(best, (p - q).norm());
+      for (const Eigen::Vector2d& p : clear ? seen.objects : all) best = std::min(best, (p - q).norm());
       if (clear) {
-        EXPECT_LT(best, 0.2) << "object at " << q.transpose() << " in window " << i;
-        ++compared;
+        sum2 += best * best;
+        e.clear_worst = std::max(e.clear_worst, best);
+        ++e.compared;
       } else {
-        EXPECT_LT(best, 1.5) << "object at " << q.transpose() << " near the border of window " << i;
+        e.border_worst = std::max(e.border_worst, best);
       }
     }
     // Nothing seen that is not there.
@@ -52,7 +71,23 @@ TEST(Eye, CentroidsMatchTheWorldWithinAFifthOfAMillimetre) {
       EXPECT_LT(best, 1.5) << "phantom at " << p.transpose() << " in window " << i;
     }
   }
-  EXPECT_GT(compared, 100);
+  e.clear_rms = e.compared > 0 ? std::sqrt(sum2 / e.compared) : 0;
+  std::cout << sim::realism_name(realism) << ": whole marbles " << e.compared << ", RMS " << e.clear_rms
+            << " mm, worst " << e.clear_worst << " mm; near the border worst " << e.border_worst << " mm\n";
+  return e;
+}
+
+TEST(Eye, CentroidsMatchTheWorldWithinAFifthOfAMillimetre) {
+  const CentroidErrors ideal = centroid_errors(sim::Realism::ideal);
+  EXPECT_GT(ideal.compared, 100);
+  EXPECT_LT(ideal.clear_worst, 0.2);
+  EXPECT_LT(ideal.border_worst, 1.5);
+  // Under the rig's realism the camera's lens, the spheres' shading and shadows are not in the
+  // eye's model of its camera; a whole marble still comes within a fifth of a millimetre.
+  const CentroidErrors rig = centroid_errors(sim::Realism::rig);
+  EXPECT_GT(rig.compared, 100);
+  EXPECT_LT(rig.clear_worst, 0.2);
+  EXPECT_LT(rig.border_worst, 1.5);
 }
 
 TEST(Eye, MarblesWhoseCentreIsOutsideTheWindowAreNotSeen) {
@@ -72,40 +107,58 @@ TEST(Eye, MarblesWhoseCentreIsOutsideTheWindowAreNotSeen) {
   EXPECT_NEAR(ys[1], 40, 0.5);
 }
 
-TEST(Eye, MarblesCutByTheBorderAreLocatedAsWellAsWhole) {
-  // Marbles at each border and in each corner, from 1.25 mm outside to 2 mm inside: whatever the
-  // cut, the centre comes back within a fifth of a millimetre.
+// Marbles at each border and in each corner, from 1.25 mm outside to 2 mm inside: the worst error of
+// the centre the eye puts back from the cap it sees, apart from deep corner caps (which show little
+// of their marble) and their worst.
+struct CutErrors {
   double worst = 0;
+  double deep_corner_worst = 0;
+};
+
+CutErrors cut_errors(sim::Realism realism) {
+  CutErrors e;
   for (double off = -1.25; off <= 2.01; off += 0.25) {
     sim::World world;
     world.size = {300, 300};
     world.objects = {{100 + off, 125},       {150 - off, 125},       {125, 100 + off},       {125, 150 - off},
                      {100 + off, 100 + off}, {150 - off, 150 - off}, {100 + off, 150 - off}, {150 - off, 100 + off}};
-    Rig rig(world);
+    test_rig::RigOptions options;
+    options.realism = realism;
+    Rig rig(world, options);
     rig.place({100, 100});
     const Sighting seen = rig.eye().look();
     std::vector<Eigen::Vector2d> all = seen.objects;
     all.insert(all.end(), seen.partial.begin(), seen.partial.end());
-    ASSERT_EQ(all.size(), world.objects.size()) << "offset " << off;
+    EXPECT_EQ(all.size(), world.objects.size()) << "offset " << off;
     for (const Eigen::Vector2d& w : world.objects) {
       const Eigen::Vector2d q = w - Eigen::Vector2d(100, 100);
       double best = 1e9;
       for (const Eigen::Vector2d& p : all) best = std::min(best, (p - q).norm());
-      // A deep cap at a corner shows little of its marble, and the illumination gradient changes the
-      // blob's size there: within a millimetre then, a fifth of one otherwise.
       const bool deep_corner = (q.x() < -1 || q.x() > 51) && (q.y() < -1 || q.y() > 51);
-      EXPECT_LT(best, deep_corner ? 1.0 : 0.2) << "marble at " << q.transpose();
-      worst = std::max(worst, best);
-      // In view exactly when the centre is inside.
+      (deep_corner ? e.deep_corner_worst : e.worst) = std::max(deep_corner ? e.deep_corner_worst : e.worst, best);
+      // In view exactly when the centre is inside (by more than the lens and shading may shift it).
       const bool inside = q.x() > 0 && q.x() < 50 && q.y() > 0 && q.y() < 50;
-      if (std::min({q.x(), q.y(), 50 - q.x(), 50 - q.y()}) > 0.1 || !inside) {
+      if (std::min({std::abs(q.x()), std::abs(q.y()), std::abs(50 - q.x()), std::abs(50 - q.y())}) > 0.3) {
         const bool seen_inside = std::any_of(seen.objects.begin(), seen.objects.end(),
                                              [&](const Eigen::Vector2d& p) { return (p - q).norm() < 0.5; });
-        EXPECT_EQ(seen_inside, inside) << "marble at " << q.transpose();
+        EXPECT_EQ(seen_inside, inside) << sim::realism_name(realism) << ": marble at " << q.transpose();
       }
     }
   }
-  std::cout << "worst error of a marble cut by the border: " << worst << " mm\n";
+  std::cout << sim::realism_name(realism) << ": worst error of a marble cut by the border " << e.worst
+            << " mm, of a deep corner cap " << e.deep_corner_worst << " mm\n";
+  return e;
+}
+
+TEST(Eye, MarblesCutByTheBorderAreLocatedAsWellAsWhole) {
+  const CutErrors ideal = cut_errors(sim::Realism::ideal);
+  EXPECT_LT(ideal.worst, 0.2);
+  EXPECT_LT(ideal.deep_corner_worst, 1.0);
+  // The rig's lens, vignetting and shading change a cut marble's cap where the eye assumes an
+  // evenly lit disk: a third of a millimetre (the navigator's view margin covers it).
+  const CutErrors rig = cut_errors(sim::Realism::rig);
+  EXPECT_LT(rig.worst, 0.35);
+  EXPECT_LT(rig.deep_corner_worst, 1.0);
 }
 
 TEST(Eye, AnEmptyViewShowsNothing) {
