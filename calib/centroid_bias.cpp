@@ -1,6 +1,6 @@
 #include "calib/centroid_bias.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
 #include <string>
 
 #include "calib/correspondence.hpp"
@@ -37,14 +37,21 @@ namespace {
 CentroidBias solve(const std::vector<Eigen::Vector2d>& centroids, const std::vector<Eigen::Vector2d>& projected,
                    const std::vector<std::size_t>& use, cv::Size size, int degree) {
   const CentroidBias shape(degree, size, Eigen::MatrixX2d::Zero(CentroidBias::terms(degree), 2));
-  Eigen::MatrixXd a(static_cast<Eigen::Index>(use.size()), CentroidBias::terms(degree));
-  Eigen::MatrixX2d b(static_cast<Eigen::Index>(use.size()), 2);
-  for (std::size_t r = 0; r < use.size(); ++r) {
-    const auto row = static_cast<Eigen::Index>(r);
-    a.row(row) = shape.monomials(centroids[use[r]]).transpose();
-    b.row(row) = (centroids[use[r]] - projected[use[r]]).transpose();
+  // Normal equations, summed point by point: a few well-scaled unknowns (the monomials are
+  // normalised to [-1, 1]).
+  const int n = CentroidBias::terms(degree);
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  for (const std::size_t i : use) {
+    const Eigen::VectorXd m = shape.monomials(centroids[i]);
+    const Eigen::Vector2d lean = centroids[i] - projected[i];
+    for (int r = 0; r < n; ++r) {
+      for (int c = 0; c < n; ++c) normal(r, c) += m(r) * m(c);
+      rhs(r, 0) += m(r) * lean.x();
+      rhs(r, 1) += m(r) * lean.y();
+    }
   }
-  return {degree, size, a.colPivHouseholderQr().solve(b)};
+  return {degree, size, normal.ldlt().solve(rhs)};
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "calib/marble_fit.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -97,47 +97,44 @@ double cost(const Params& q, const std::vector<Sample>& samples, const RadiusPri
   return c + std::pow(prior.weight * (q[rad] - prior.radius), 2);
 }
 
-// Levenberg-Marquardt over the parameters `free` selects, with central-difference derivatives.
-// Returns the final cost.
+// Levenberg-Marquardt over the parameters `free` selects, with central-difference derivatives, on
+// fixed-size normal equations (a parameter held fixed gets a unit row). Returns the final cost.
 double levenberg_marquardt(Params& q, const std::vector<Sample>& samples, const RadiusPrior& prior,
                            const std::array<bool, kCount>& free, int max_iterations) {
-  std::vector<int> index;
-  for (int k = 0; k < kCount; ++k) {
-    if (free[static_cast<std::size_t>(k)]) index.push_back(k);
-  }
-  const auto n = static_cast<Eigen::Index>(samples.size()) + 1;  // the prior is the last row
-  const auto m = static_cast<Eigen::Index>(index.size());
+  using Normal = Eigen::Matrix<double, kCount, kCount>;
   double current = cost(q, samples, prior);
   double lambda = 1e-3;
-  Eigen::MatrixXd j(n, m);
-  Eigen::VectorXd e(n);
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    for (Eigen::Index i = 0; i + 1 < n; ++i) {
-      e(i) = model(q, samples[static_cast<std::size_t>(i)].p) - samples[static_cast<std::size_t>(i)].value;
-    }
-    e(n - 1) = prior.weight * (q[rad] - prior.radius);
-    for (Eigen::Index c = 0; c < m; ++c) {
-      const int k = index[static_cast<std::size_t>(c)];
-      const double h = 1e-4 * std::max(1.0, std::abs(q[k]));
-      Params plus = q;
-      Params minus = q;
-      plus[k] += h;
-      minus[k] -= h;
-      for (Eigen::Index i = 0; i + 1 < n; ++i) {
-        const auto& p = samples[static_cast<std::size_t>(i)].p;
-        j(i, c) = (model(plus, p) - model(minus, p)) / (2 * h);
+    Normal a = Normal::Zero();
+    Params g = Params::Zero();
+    Params row;
+    for (const Sample& sample : samples) {
+      const double e = model(q, sample.p) - sample.value;
+      for (int k = 0; k < kCount; ++k) {
+        row[k] = 0;
+        if (!free[static_cast<std::size_t>(k)]) continue;
+        const double h = 1e-4 * std::max(1.0, std::abs(q[k]));
+        Params plus = q;
+        Params minus = q;
+        plus[k] += h;
+        minus[k] -= h;
+        row[k] = (model(plus, sample.p) - model(minus, sample.p)) / (2 * h);
       }
-      j(n - 1, c) = k == rad ? prior.weight : 0.0;
+      a.selfadjointView<Eigen::Lower>().rankUpdate(row);
+      g += e * row;
     }
-    const Eigen::MatrixXd a = j.transpose() * j;
-    const Eigen::VectorXd g = j.transpose() * e;
+    // The prior's row: d(weight (r - r0)) / dr = weight.
+    a(rad, rad) += prior.weight * prior.weight;
+    g[rad] += prior.weight * prior.weight * (q[rad] - prior.radius);
+    a = a.selfadjointView<Eigen::Lower>();
     bool improved = false;
     for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
-      Eigen::MatrixXd damped = a;
-      damped.diagonal() += lambda * (a.diagonal().array() + 1e-9).matrix();
-      const Eigen::VectorXd step = damped.ldlt().solve(-g);
-      Params next = q;
-      for (Eigen::Index c = 0; c < m; ++c) next[index[static_cast<std::size_t>(c)]] += step(c);
+      Normal damped = a;
+      for (int k = 0; k < kCount; ++k) {
+        damped(k, k) = free[static_cast<std::size_t>(k)] ? a(k, k) * (1 + lambda) + 1e-9 : 1.0;
+      }
+      const Params step = damped.ldlt().solve(-g);
+      const Params next = q + step;
       const double trial = cost(next, samples, prior);
       if (std::isfinite(trial) && trial < current) {
         const bool converged = current - trial < 1e-10 * current + 1e-12;
