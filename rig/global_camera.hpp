@@ -8,7 +8,7 @@
 //     flat on the table, the others raised and tipped for the lens), rendered under the realism,
 //     give the full camera model of the board's face. The board is `board_thickness` thick: its face,
 //     the calibrated plane, lies that far above the table.
-//  2. One view of a check plate: marbles on a 12 x 12 grid of known places across the workspace.
+//  2. One view of a check plate: marbles on a 12 x 12 grid of known places over the whole workspace.
 //     Their weighted centroids (the engine's marble graph) against where the model projects their
 //     centres (a radius above the table) give the centroid's lean (calib/centroid_bias.hpp): the
 //     shading, highlight and shadow's bias, and what the lens model leaves, as a smooth field.
@@ -79,8 +79,8 @@ GlobalCameraSession calibrate_session(const Eigen::Vector2d& workspace, double m
 /// Everything a session depends on, spelled out: its cache key.
 std::string session_key(const Eigen::Vector2d& workspace, double marble_diameter, const GlobalCameraSettings& settings);
 
-/// The check plate's marbles (workspace mm): a 12 x 12 grid over the middle 84% of the workspace, in
-/// raster order.
+/// The check plate's marbles (workspace mm): a 12 x 12 grid over all but the outer 2% of the
+/// workspace, in raster order.
 std::vector<Eigen::Vector2d> check_plate(const Eigen::Vector2d& workspace);
 
 /// The noise frames of a session: the board's views 0..4, the check plate's, the survey's world's.
