@@ -13,6 +13,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/progress.hpp"
 #include "calib/calibration.hpp"
+#include "calib/plane_pose.hpp"
 #include "calib/chessboard.hpp"
 #include "calib/dot_grid_detector.hpp"
 #include "calib/estimate.hpp"
@@ -222,7 +223,7 @@ int map_command(const CalibrateArgs& a) {
         !std::isfinite(v)) {
       throw calib::CalibrationError(fmt::format("{}:{}: expected two numbers u,v, not '{}'", name, n, line));
     }
-    const Eigen::Vector2d w = c.to_world({{u, v}}).front();
+    const Eigen::Vector2d w = calib::to_world_at_height(c, {{u, v}}, a.height).front();
     std::cout << fmt::format("{},{},{},{}\n", u, v, w.x(), w.y());
   }
   std::cout.flush();
@@ -266,6 +267,10 @@ CLI::App* add_calibrate_command(CLI::App& parent, CalibrateArgs& a) {
   CLI::App* map = cmd->add_subcommand("map", "Map pixels (CSV u,v on stdin or a file) to workspace X,Y (mm)");
   map->add_option("--calib", a.calib, "Calibration file")->required()->type_name("calib.yaml");
   map->add_option("input", a.map_input, "CSV with header u,v (default: stdin)")->type_name("FILE");
+  map->add_option("--height", a.height,
+                  "The points lie this far above the calibrated plane, mm (a marble's centre: its radius, less the "
+                  "board's thickness); needs the full model")
+      ->capture_default_str();
   return cmd;
 }
 

@@ -22,6 +22,7 @@ struct CalibrateArgs {
   // calibrate map
   std::string calib;
   std::string map_input;  ///< CSV u,v; empty: stdin
+  double height = 0;      ///< mm above the calibrated plane
 };
 
 CLI::App* add_calibrate_command(CLI::App& parent, CalibrateArgs& args);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/progress.hpp"
 #include "calib/calibration.hpp"
+#include "calib/plane_pose.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/io/annotator.hpp"
@@ -98,6 +100,10 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
   cmd->add_option("--calib", a.calib,
                   "Calibration (neopipe calibrate): add X,Y, the weighted centroid on the workspace (mm)")
       ->type_name("calib.yaml");
+  cmd->add_option("--height", a.height,
+                  "With --calib: the blobs' centres lie this far above the calibrated plane, mm (a marble's centre: "
+                  "its radius, less the calibration board's thickness); needs the full model")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", a.quiet, "No progress bar and no summary");
   cmd->add_flag("--list-kernels", a.list_kernels, "List the kernels a graph spec can use, and exit");
   return cmd;
@@ -109,6 +115,8 @@ int run_command(const RunArgs& a) {
     return kExitOk;
   }
   if (a.inputs.empty()) throw UsageError{"no INPUT given (a video file, image files or a directory of images)"};
+  if (a.height != 0 && a.calib.empty()) throw UsageError{"--height maps blobs through a calibration: give --calib"};
+  if (!std::isfinite(a.height)) throw UsageError{fmt::format("--height {}: must be a number of mm", a.height)};
 
   pl::CompiledGraph graph = pl::compile(run_graph(a), pl::standard_kernels());
   const auto blob_output = graph.find_output(pl::PortType::blobs);
@@ -123,12 +131,13 @@ int run_command(const RunArgs& a) {
   std::optional<calib::Calibration> calibration;
   if (!a.calib.empty()) {
     calibration = calib::load_calibration(a.calib);
-    table.to_world = [&c = *calibration](const std::vector<cv::Point2d>& px) {
+    if (a.height != 0) (void)calib::plane_pose(*calibration);  // refuses the plane homography now, not per frame
+    table.to_world = [&c = *calibration, height = a.height](const std::vector<cv::Point2d>& px) {
       std::vector<Eigen::Vector2d> in;
       in.reserve(px.size());
       for (const auto& p : px) in.emplace_back(p.x, p.y);
       std::vector<cv::Point2d> out;
-      for (const auto& w : c.to_world(in)) out.emplace_back(w.x(), w.y());
+      for (const auto& w : calib::to_world_at_height(c, in, height)) out.emplace_back(w.x(), w.y());
       return out;
     };
   }

@@ -25,6 +25,7 @@ struct RunArgs {
   int frames_in_flight = 0;
   bool moments = false;
   std::string calib;  ///< calibration file: add X,Y (workspace mm) to every row
+  double height = 0;  ///< mm above the calibrated plane where the blobs' centres lie
   bool quiet = false;
   bool list_kernels = false;
 };

@@ -113,10 +113,11 @@ inline RunResult run_neopipe(const std::vector<std::string>& args) {
 }
 
 /// A CSV table of numbers: the header line into `header`, then each row's cells.
-inline std::vector<std::vector<double>> csv_numbers(const std::string& text, std::string* header) {
+inline std::vector<std::vector<double>> csv_numbers(const std::string& text, std::string* header = nullptr) {
   std::istringstream in(text);
   std::string line;
-  std::getline(in, *header);
+  std::getline(in, line);
+  if (header != nullptr) *header = line;
   std::vector<std::vector<double>> rows;
   while (std::getline(in, line)) {
     std::vector<double> row;
