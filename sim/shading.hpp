@@ -46,6 +46,23 @@ class Shader {
     if (c <= cutoff_) return 0;
     return light_.specular * std::pow(c, light_.shininess) * height2_ / d2;
   }
+  /// The light leaving a surface of `albedo` (gray levels) at `point` with unit `normal` towards
+  /// the viewer: albedo x lit(direct) + highlight, in one pass over the shared vectors.
+  [[nodiscard]] double surface(double albedo, const Eigen::Vector3d& point, const Eigen::Vector3d& normal) const {
+    const Eigen::Vector3d to_light = position_ - point;
+    const double d2 = to_light.squaredNorm();
+    const double inverse = 1 / std::sqrt(d2);
+    const double cosine = normal.dot(to_light) * inverse;
+    if (cosine <= 0) return albedo * light_.ambient;
+    const double falloff = height2_ / d2;
+    double out = albedo * lit(cosine * falloff);
+    if (light_.specular > 0) {
+      const Eigen::Vector3d half = (to_light * inverse - point.normalized()).normalized();
+      const double c = normal.dot(half);
+      if (c > cutoff_) out += light_.specular * std::pow(c, light_.shininess) * falloff;
+    }
+    return out;
+  }
   [[nodiscard]] const Eigen::Vector3d& position() const { return position_; }
   [[nodiscard]] const PointLight& light() const { return light_; }
 
