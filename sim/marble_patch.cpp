@@ -88,26 +88,77 @@ double coverage(const Grid& g, std::size_t i) {
   return std::clamp(flat - curvature * (b * b * b - a * a * a) / 6, 0.0, 1.0);
 }
 
-// Light leaving sphere k towards the camera along ray d: at the point the ray meets it, or where it
-// passes closest (a rim pixel whose centre misses).
-double sphere_light(const PatchContext& c, std::span<const Vector3d> centres, std::size_t k, const Vector3d& d,
-                    double dd) {
-  const double r = c.radius;
-  const double albedo = c.rendering.surfaces.marble;
-  if (!c.shader) return albedo;
-  const Vector3d& s = centres[k];
+// Where ray d (dd = d.d) meets sphere k, or passes closest to it (a rim pixel whose centre misses).
+Vector3d surface_point(const Vector3d& d, double dd, const Vector3d& s, double r) {
   const double t0 = d.dot(s) / dd;
   const Vector3d off = t0 * d - s;
   const double off2 = off.squaredNorm();
-  const Vector3d x = off2 < r * r ? Vector3d((t0 - std::sqrt((r * r - off2) / dd)) * d)
-                                  : Vector3d(s + off * (r / std::sqrt(std::max(off2, 1e-300))));
+  return off2 < r * r ? Vector3d((t0 - std::sqrt((r * r - off2) / dd)) * d)
+                      : Vector3d(s + off * (r / std::sqrt(std::max(off2, 1e-300))));
+}
+
+// The light sphere k's surface at x sends to the camera, shadowed by the others of the cluster;
+// `mirror` as Shader::surface.
+double shaded(const PatchContext& c, std::span<const Vector3d> centres, std::size_t k, const Vector3d& x,
+              double* mirror = nullptr) {
+  const double albedo = c.rendering.surfaces.marble;
   const Shader& shader = *c.shader;
   if (c.rendering.light->shadows) {
     for (std::size_t j = 0; j < centres.size(); ++j) {
-      if (j != k && blocks(x, shader.position(), centres[j], r)) return albedo * shader.lit(0);
+      if (j != k && blocks(x, shader.position(), centres[j], c.radius)) {
+        if (mirror) *mirror = -1;
+        return albedo * shader.lit(0);
+      }
     }
   }
-  return shader.surface(albedo, x, (x - s) / r);
+  return shader.surface(albedo, x, (x - centres[k]) / c.radius, mirror);
+}
+
+// Where and how finely a patch's pixels are area-sampled for highlights. A highlight is close to
+// a Gaussian in the normal's angle, sigma = 1 / sqrt(shininess); taken at a pixel's centre, a
+// pixel spanning w of that angle loses about w^2 / (24 sigma^2) of its peak: under 2.5% for
+// w < 0.75 sigma (the onboard camera's marbles, 25 px across), point sampling then. Smaller spots
+// (the global camera's marbles, 9 px across) are averaged over 2 x 2 or 4 x 4 rays per pixel
+// where the highlight is over half a gray level.
+struct HighlightSampling {
+  double near_cosine = 2;  // supersample where the mirror cosine is above this (2: never)
+  int samples = 1;         // per axis
+};
+
+HighlightSampling highlight_sampling(const PatchContext& c, double spread) {
+  if (!c.shader || c.shader->visible_angle() <= 0) return {};
+  const double sigma = 1 / std::sqrt(c.rendering.light->shininess);
+  if (spread < 0.75 * sigma) return {};
+  return {std::cos(std::min(c.shader->visible_angle() + spread, 3.14159)), spread < 1.5 * sigma ? 2 : 4};
+}
+
+// Light leaving sphere k towards the camera from pixel (px, py), whose centre's ray is d: at the
+// centre, or near a highlight averaged over sub-pixel rays (interpolated between pixel centres)
+// that meet the sphere.
+double sphere_light(const PatchContext& c, std::span<const Vector3d> centres, std::size_t k, int px, int py,
+                    const Vector3d& d, double dd, const HighlightSampling& sampling) {
+  if (!c.shader) return c.rendering.surfaces.marble;
+  const double r = c.radius;
+  const Vector3d& s = centres[k];
+  const Vector3d x = surface_point(d, dd, s, r);
+  double mirror = -1;
+  const double at_centre = shaded(c, centres, k, x, &mirror);
+  if (sampling.samples == 1 || mirror <= sampling.near_cosine) return at_centre;
+  const int n = sampling.samples;
+  double sum = 0;
+  int hits = 0;
+  for (int sy = 0; sy < n; ++sy) {
+    for (int sx = 0; sx < n; ++sx) {
+      const Eigen::Vector2d ray = c.rays.interpolate(px + (sx + 0.5) / n - 0.5, py + (sy + 0.5) / n - 0.5);
+      const Vector3d e(ray.x(), ray.y(), 1);
+      const double ee = e.squaredNorm();
+      const double t0 = e.dot(s) / ee;
+      if ((t0 * e - s).squaredNorm() >= r * r) continue;  // this part of the pixel sees the table
+      sum += shaded(c, centres, k, surface_point(e, ee, s, r));
+      ++hits;
+    }
+  }
+  return hits > 0 ? sum / hits : at_centre;
 }
 
 // A disk's light (MarbleRenderer's dome) at table point p, `cover` of the pixel inside its rim.
@@ -225,6 +276,11 @@ void marble_patch(const PatchContext& c, std::span<const Vector3d> centres, cons
     if (shadows) shadow_grids.push_back({&shade[k * cells], gw, far_bound(&shade[k * cells], gw, gh)});
   }
 
+  // How far a sphere's normal turns across a pixel: the outline distance's steepest change per
+  // pixel (mm) over the radius.
+  double spread = 0;
+  for (const Grid& g : outlines) spread = std::max(spread, g.far / (0.75 * 1.4143) / c.radius);
+  const HighlightSampling sampling = highlight_sampling(c, spread);
   for (int y = 0; y < rect.height; ++y) {
     auto* row = out.ptr<float>(y);
     for (int x = 0; x < rect.width; ++x) {
@@ -241,15 +297,16 @@ void marble_patch(const PatchContext& c, std::span<const Vector3d> centres, cons
       const Eigen::Vector2d ray = c.rays.at(rect.x + x, rect.y + y);
       const Vector3d d(ray.x(), ray.y(), 1);
       const double dd = d.squaredNorm();
-      const auto p = c.geometry.table_point(ray);
-      double covered = 0;  // of the pixel, by marbles
+      double covered = 0;         // of the pixel, by marbles
+      std::optional<Vector3d> p;  // where the ray meets the table, when that matters
+      if (!sphere) p = c.geometry.table_point(ray);
       double marble_light = 0;
       for (std::size_t k = 0; k < n; ++k) {
         const double cover = coverage(outlines[k], i);
         if (cover <= 0) continue;
         covered += cover;
         if (sphere) {
-          marble_light += cover * sphere_light(c, centres, k, d, dd);
+          marble_light += cover * sphere_light(c, centres, k, rect.x + x, rect.y + y, d, dd, sampling);
         } else if (p) {
           marble_light += cover * disk_light(c, centres[k], *p, cover, gradient(outlines[k], i).norm());
         }
@@ -257,6 +314,7 @@ void marble_patch(const PatchContext& c, std::span<const Vector3d> centres, cons
       covered = std::min(covered, 1.0);
       const double table = c.table.at(rect.x + x, rect.y + y);
       double table_light = table;
+      if (shadows && covered < 1) p = c.geometry.table_point(ray);
       if (shadows && p && covered < 1) {
         double lit = 1;  // the part of the pixel's table that sees the light
         for (std::size_t k = 0; k < n; ++k) lit *= 1 - coverage(shadow_grids[k], i);

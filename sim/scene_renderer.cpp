@@ -23,9 +23,10 @@ const Rendering& validated(const Rendering& r) {
   return r;
 }
 
-// Pixels between the table's exact nodes: a power of two at most two thirds of the texture's
-// finest features (half its coarse scale) at the image centre's scale, at most 8; with no texture
-// the light alone, which changes over hundreds of pixels: 16.
+// Pixels between the table's exact nodes: a power of two at most a third of the texture's finest
+// features (half its coarse scale) at the image centre's scale, at most 8, so bilinear steps
+// between nodes stay within a tenth of the texture's amplitude (tested); with no texture the light
+// alone, which changes over hundreds of pixels: 16.
 int node_spacing(const Rendering& r, const PinholeCamera& camera) {
   if (r.surfaces.texture <= 0) return 16;
   const cv::Size s = camera.size();
@@ -34,7 +35,7 @@ int node_spacing(const Rendering& r, const PinholeCamera& camera) {
   const double px_per_mm = std::sqrt(std::abs(camera.plane_jacobian(*p).determinant()));
   const double finest_px = r.surfaces.texture_scale / 2 * px_per_mm;
   int spacing = 1;
-  while (spacing < 8 && 2 * spacing <= finest_px / 1.5) spacing *= 2;
+  while (spacing < 8 && 2 * spacing <= finest_px / 3) spacing *= 2;
   return spacing;
 }
 
