@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "rig_test_support.hpp"
 #include "sim/camera_source.hpp"
@@ -233,6 +234,32 @@ TEST(SceneRenderer, SameSeedSamePixelsOtherSeedOrFrameOtherNoise) {
   EXPECT_EQ(cv::norm(fa, b.render(w.objects, 5, camera, 4), cv::NORM_INF), 0);
   EXPECT_GT(cv::norm(fa, c.render(w.objects, 5, camera, 4), cv::NORM_INF), 0);
   EXPECT_GT(cv::norm(fa, a.render(w.objects, 5, camera, 5), cv::NORM_INF), 0);
+}
+
+TEST(SceneRenderer, OneRendererOnManyThreadsGivesTheSamePixels) {
+  // render() is const and keeps no state between calls: frames rendered concurrently by four
+  // threads sharing one renderer are those rendered one after another.
+  const sim::World w = world(1000, 3);
+  const sim::Rendering r = rig(sim::CameraKind::onboard);
+  const auto camera_at = [&](int i) { return onboard(r, {100 + 3.0 * i, 150 + 2.0 * i, 0.05 * i}); };
+  const sim::SceneRenderer renderer(r, camera_at(0));
+  constexpr int kFrames = 32;
+  std::vector<cv::Mat> sequential;
+  for (int i = 0; i < kFrames; ++i) sequential.push_back(renderer.render(w.objects, 5, camera_at(i), i));
+  std::vector<cv::Mat> concurrent(kFrames);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = t; i < kFrames; i += 4)
+        concurrent[static_cast<std::size_t>(i)] = renderer.render(w.objects, 5, camera_at(i), i);
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (int i = 0; i < kFrames; ++i) {
+    EXPECT_EQ(cv::norm(sequential[static_cast<std::size_t>(i)], concurrent[static_cast<std::size_t>(i)], cv::NORM_INF),
+              0)
+        << "frame " << i;
+  }
 }
 
 TEST(SceneRenderer, InterlacedFramesTakeOddRowsHalfAFrameLater) {
