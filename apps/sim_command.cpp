@@ -86,8 +86,8 @@ void add_sim_camera_options(CLI::App& cmd, SimCameraArgs& a) {
                  "none under ideal, -0.012 rig)")
       ->type_name("K1,K2,P1,P2,K3");
   cmd.add_option("--lens-extra", a.lens_extra,
-                 "Lens terms beyond OpenCV's: x (k4 r^8) radial, thin prism s1,s2 (x) and s3,s4 (y) (global rig "
-                 "5,5e-4,-4e-3,-4e-4,3.5e-3; 0 under ideal)")
+                 "Lens terms beyond OpenCV's: radial k4 r^8 (times x, y), thin prism x += s1 r^2 + s2 r^4, "
+                 "y += s3 r^2 + s4 r^4 (global rig 5,5e-4,-4e-3,-4e-4,3.5e-3; 0 under ideal)")
       ->type_name("K4,S1,S2,S3,S4");
   cmd.add_option("--vignetting", a.vignetting,
                  "Light lost at the image corners, fraction (rig 0.12 global, 0.08 onboard)")
@@ -163,7 +163,8 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
       ->capture_default_str();
   render
       ->add_option("--target-pose", a.render.target_pose,
-                   "Target origin x,y,z (mm), turn theta, tilts about its axes (degrees; default 40,40,0,0,0,0)")
+                   "Target origin x,y,z (mm), turn theta, tilts about its axes (degrees; default 40,40,0,0,0,0); the "
+                   "printed face's: a board t mm thick lying flat has z = t")
       ->type_name("X,Y,Z,THETA[,TX,TY]");
   render->footer(
       "With --target, --truth lists the dot centres or inner chessboard corners (id = row-major index).\n"

@@ -1,6 +1,8 @@
 // Simulator rendering speed: onboard 256x256 frames along a path over a default world (the
-// navigator renders thousands of them per batch of journeys), one core, beside a peer that draws
-// the same marbles with OpenCV (anti-aliased circles, Gaussian blur, cv::randn noise).
+// navigator renders thousands of them per batch of journeys), one core, at the ideal realism
+// (today's MarbleRenderer) and at rig (SceneRenderer: spheres, light, shadows, texture, lens,
+// defocus, shot noise), beside a peer that draws the same marbles with OpenCV (anti-aliased
+// circles, Gaussian blur, cv::randn noise); and global 1280x960 frames at rig.
 //   ./build/bench/neopipe_sim_bench --benchmark_min_time=0.5
 // items_per_second is frames/s.
 
@@ -11,6 +13,8 @@
 
 #include "sim/cameras.hpp"
 #include "sim/marble_renderer.hpp"
+#include "sim/realism.hpp"
+#include "sim/scene_renderer.hpp"
 #include "sim/world.hpp"
 
 namespace {
@@ -36,6 +40,37 @@ void BM_OnboardFrame(benchmark::State& state) {
   std::int64_t i = 0;
   for (auto _ : state) {
     const auto camera = sim::make_onboard_camera(pose_at(i), config);
+    benchmark::DoNotOptimize(renderer.render(w.objects, w.marble_diameter, camera, i).data);
+    ++i;
+  }
+  state.SetItemsProcessed(i);
+}
+
+// The rig's onboard camera: the window in the plane of the marbles' centres, the rig lens placed
+// per frame (onboard_camera_at), the renderer built once.
+void BM_OnboardFrameRig(benchmark::State& state) {
+  const sim::World w = world(static_cast<int>(state.range(0)));
+  const sim::Rendering rig = sim::rendering_for(sim::Realism::rig, sim::CameraKind::onboard);
+  const sim::OnboardCameraConfig config = sim::onboard_config_for(rig, w.marble_diameter);
+  const sim::Intrinsics k = sim::onboard_intrinsics(config, rig);
+  const sim::SceneRenderer renderer(rig, sim::onboard_camera_at(pose_at(0), config, k));
+  std::int64_t i = 0;
+  for (auto _ : state) {
+    const auto camera = sim::onboard_camera_at(pose_at(i), config, k);
+    benchmark::DoNotOptimize(renderer.render(w.objects, w.marble_diameter, camera, i).data);
+    ++i;
+  }
+  state.SetItemsProcessed(i);
+}
+
+// The global camera at rig: it never moves, so the table's light is the renderer's cache.
+void BM_GlobalFrameRig(benchmark::State& state) {
+  const sim::World w = world(static_cast<int>(state.range(0)));
+  const sim::Rendering rig = sim::rendering_for(sim::Realism::rig, sim::CameraKind::global);
+  const auto camera = sim::make_global_camera(w.size, {}, rig);
+  const sim::SceneRenderer renderer(rig, camera);
+  std::int64_t i = 0;
+  for (auto _ : state) {
     benchmark::DoNotOptimize(renderer.render(w.objects, w.marble_diameter, camera, i).data);
     ++i;
   }
@@ -73,5 +108,7 @@ void BM_OnboardFrameOpenCV(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_OnboardFrame)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OnboardFrameRig)->Arg(0)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);  // 0: the fixed cost
+BENCHMARK(BM_GlobalFrameRig)->Arg(100)->Arg(400)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OnboardFrameOpenCV)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

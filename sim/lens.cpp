@@ -1,6 +1,6 @@
 #include "sim/lens.hpp"
 
-#include <Eigen/LU>
+#include <Eigen/LU>  // determinant()
 #include <cmath>
 #include <numbers>
 
@@ -37,13 +37,17 @@ Eigen::Matrix2d distortion_jacobian(const Lens& lens, const Eigen::Vector2d& n) 
   return j;
 }
 
-Eigen::Vector2d undistort(const Lens& lens, const Eigen::Vector2d& distorted, const Eigen::Vector2d& start) {
+Eigen::Vector2d undistort(const Lens& lens, const Eigen::Vector2d& distorted, const Eigen::Vector2d& start,
+                          double tolerance) {
   Eigen::Vector2d n = start;
   for (int i = 0; i < 30; ++i) {
     const Eigen::Vector2d f = distort(lens, n) - distorted;
-    const Eigen::Vector2d step = distortion_jacobian(lens, n).partialPivLu().solve(f);
+    const Eigen::Matrix2d j = distortion_jacobian(lens, n);
+    // The 2 x 2 solve in closed form: an unfolded lens keeps the determinant well away from 0.
+    const double det = j(0, 0) * j(1, 1) - j(0, 1) * j(1, 0);
+    const Eigen::Vector2d step((j(1, 1) * f.x() - j(0, 1) * f.y()) / det, (j(0, 0) * f.y() - j(1, 0) * f.x()) / det);
     n -= step;
-    if (step.squaredNorm() < 1e-30) break;
+    if (step.squaredNorm() < tolerance * tolerance) break;
   }
   return n;
 }

@@ -38,9 +38,9 @@ struct Lens {
 /// d distort / d n at `n`.
 [[nodiscard]] Eigen::Matrix2d distortion_jacobian(const Lens& lens, const Eigen::Vector2d& n);
 /// The undistorted coordinates whose distortion is `distorted`, by Newton's method from `start`
-/// (a neighbour's answer converges in one or two steps).
+/// (a neighbour's answer converges in one or two steps), until a step is below `tolerance`.
 [[nodiscard]] Eigen::Vector2d undistort(const Lens& lens, const Eigen::Vector2d& distorted,
-                                        const Eigen::Vector2d& start);
+                                        const Eigen::Vector2d& start, double tolerance = 1e-15);
 
 /// The smallest normalised radius up to `field` at which the lens folds the image (the map stops
 /// being one-to-one: its Jacobian's determinant, or the growth of the distorted radius along a

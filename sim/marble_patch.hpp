@@ -35,9 +35,10 @@ struct PatchContext {
   double radius;                        ///< the marbles', mm
 };
 
-/// The change (gray levels, CV_32F, rect's size) that marbles centred at `centres` (camera frame:
-/// spheres' centres, or disks' centres on the table) make to the table's light over `rect`
-/// (pixels; the rays must reach one pixel beyond it).
-cv::Mat marble_patch(const PatchContext& context, std::span<const Eigen::Vector3d> centres, const cv::Rect& rect);
+/// The change (gray levels) that marbles centred at `centres` (camera frame: spheres' centres, or
+/// disks' centres on the table) make to the table's light over `rect` (pixels; the rays must reach
+/// one pixel beyond it), into `out` (CV_32F, rect's size, e.g. a view of a larger patch).
+void marble_patch(const PatchContext& context, std::span<const Eigen::Vector3d> centres, const cv::Rect& rect,
+                  cv::Mat& out);
 
 }  // namespace neopipe::sim

@@ -13,13 +13,19 @@ RayTable::RayTable(const Intrinsics& k, int margin) : k_(k), margin_(margin), st
   const bool distorted = lens != Lens{};
   Eigen::Vector2d row_start(0, 0);
   for (int y = -margin; y < k.size.height + margin; ++y) {
-    // Newton from the neighbour's answer: one or two steps per pixel instead of a dozen.
-    Eigen::Vector2d guess = row_start;
+    // Newton from the answer extrapolated from the two pixels before: one or two steps per pixel
+    // instead of a dozen.
+    Eigen::Vector2d before = row_start;
+    Eigen::Vector2d last = row_start;
     for (int x = -margin; x < k.size.width + margin; ++x) {
       const Eigen::Vector2d d((x - k.cx) / k.fx, (y - k.cy) / k.fy);
-      const Eigen::Vector2d n = distorted ? undistort(lens, d, x == -margin && y == -margin ? d : guess) : d;
+      Eigen::Vector2d guess = x == -margin ? row_start : (x == -margin + 1 ? last : Eigen::Vector2d(2 * last - before));
+      if (x == -margin && y == -margin) guess = d;
+      // To 1e-12 of the focal length: far below what float storage keeps.
+      const Eigen::Vector2d n = distorted ? undistort(lens, d, guess, 1e-12) : d;
       if (x == -margin) row_start = n;
-      guess = n;
+      before = last;
+      last = n;
       const auto i = index(x, y);
       xs_[i] = static_cast<float>(n.x());
       ys_[i] = static_cast<float>(n.y());

@@ -24,6 +24,9 @@ class RayTable {
   /// The ray through sub-pixel (u, v), interpolated bilinearly between pixel centres (clamped to
   /// the table's pixels).
   [[nodiscard]] Eigen::Vector2d interpolate(double u, double v) const;
+  /// Row y's x and y coordinates, indexed by pixel x (from -margin: the pointers are to x = 0).
+  [[nodiscard]] const float* xs(int y) const { return &xs_[index(0, y)]; }
+  [[nodiscard]] const float* ys(int y) const { return &ys_[index(0, y)]; }
   [[nodiscard]] const Intrinsics& intrinsics() const { return k_; }
   [[nodiscard]] int margin() const { return margin_; }
 

@@ -37,7 +37,7 @@ struct Surfaces {
   /// Disks only: brightness at the rim as a fraction of the centre's excess (ImageModel::rim).
   double disk_rim = 0.45;
   double texture = 0;              ///< table texture amplitude: albedo x (1 + texture x noise in [-1, 1])
-  double texture_scale = 4;        ///< mm, the coarser of the texture's two octaves (the finer is half)
+  double texture_scale = 6;        ///< mm, the coarser of the texture's two octaves (the finer is half)
   std::uint64_t texture_seed = 1;  ///< the table's pattern: a property of the world, not of the noise
 };
 

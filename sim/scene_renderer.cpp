@@ -23,15 +23,10 @@ const Rendering& validated(const Rendering& r) {
   return r;
 }
 
-// Pixels beyond the image whose light the widest blur brings into it, and one more for the
-// outlines' differences.
-int blur_margin(const Defocus& d) {
-  return static_cast<int>(std::ceil(4 * std::max(d.centre, d.corner))) + 2;
-}
-
-// Pixels between the table's exact nodes: half the texture's finest features (half its coarse
-// scale) at the image centre's scale, at most 8; with no texture the light alone, which changes
-// over hundreds of pixels.
+// Pixels between the table's exact nodes: a power of two at most a third of the texture's finest
+// features (half its coarse scale) at the image centre's scale, at most 8, so bilinear steps
+// between nodes stay within a tenth of the texture's amplitude (tested); with no texture the light
+// alone, which changes over hundreds of pixels: 16.
 int node_spacing(const Rendering& r, const PinholeCamera& camera) {
   if (r.surfaces.texture <= 0) return 16;
   const cv::Size s = camera.size();
@@ -39,7 +34,16 @@ int node_spacing(const Rendering& r, const PinholeCamera& camera) {
   if (!p) return 1;
   const double px_per_mm = std::sqrt(std::abs(camera.plane_jacobian(*p).determinant()));
   const double finest_px = r.surfaces.texture_scale / 2 * px_per_mm;
-  return std::clamp(static_cast<int>(finest_px / 2), 1, 8);
+  int spacing = 1;
+  while (spacing < 8 && 2 * spacing <= finest_px / 3) spacing *= 2;
+  return spacing;
+}
+
+// Pixels beyond the image whose light the widest blur brings into it, one more for the outlines'
+// differences, rounded up to whole node spacings.
+int blur_margin(const Defocus& d, int spacing) {
+  const int m = static_cast<int>(std::ceil(4 * std::max(d.centre, d.corner))) + 2;
+  return (m + spacing - 1) / spacing * spacing;
 }
 
 // The box of image pixels (inclusive bounds as a Rect) holding these points' projections, or an
@@ -132,8 +136,8 @@ std::vector<Cluster> clusters(const std::vector<cv::Rect>& boxes) {
 SceneRenderer::SceneRenderer(const Rendering& rendering, const PinholeCamera& camera)
     : rendering_(validated(rendering)),
       intrinsics_(camera.intrinsics()),
-      margin_(blur_margin(rendering.defocus)),
       spacing_(node_spacing(rendering, camera)),
+      margin_(blur_margin(rendering.defocus, spacing_)),
       rays_(camera.intrinsics(), margin_ + spacing_ + 1),
       texture_(rendering.surfaces.texture_scale, rendering.surfaces.texture_seed),
       defocus_(rendering.defocus, camera.size()),
@@ -222,12 +226,14 @@ cv::Mat SceneRenderer::field_radiance(std::span<const Vector2d> centres, double 
       const Vector2d& p = centres[ids[m]];
       members.push_back(geometry.to_camera({p.x(), p.y(), sphere ? radius : 0.0}));
     }
-    // The blur spreads the patch by its reach: compute that much more (within the rays' margin).
+    // The blur spreads the patch by its reach: zeros that far around it (within the rays' margin).
     const cv::Rect rect =
         cv::Rect(c.box.x - reach_px, c.box.y - reach_px, c.box.width + 2 * reach_px, c.box.height + 2 * reach_px) &
         area;
     if ((rect & image).empty()) continue;
-    cv::Mat patch = marble_patch(context, members, rect);
+    cv::Mat patch = cv::Mat::zeros(rect.size(), CV_32F);
+    cv::Mat marbles = patch(c.box - rect.tl());
+    marble_patch(context, members, c.box, marbles);
     defocus_.blur_patch(patch, c.box.x + c.box.width / 2.0, c.box.y + c.box.height / 2.0);
     const cv::Rect inside = rect & image;
     light(inside) += patch(inside - rect.tl());

@@ -74,8 +74,8 @@ class SceneRenderer {
   Rendering rendering_;
   Intrinsics intrinsics_;
   std::optional<MarbleRenderer> today_;  // settings that are exactly today's ImageModel
-  int margin_;                           // pixels beyond the image whose light a blur can bring in
   int spacing_;
+  int margin_;  // pixels beyond the image whose light a blur can bring in
   RayTable rays_;
   TableTexture texture_;
   DefocusBlur defocus_;

@@ -18,7 +18,12 @@ class Shader {
         position_(light_position),
         height2_(light_height * light_height),
         // Below this cosine the highlight is under a thousandth of its peak: no pow needed.
-        cutoff_(std::pow(1e-3, 1 / light.shininess)) {}
+        cutoff_(std::pow(1e-3, 1 / light.shininess)),
+        // Beyond this angle from the mirror direction the highlight is under half a gray level.
+        visible_angle_(light.specular > 0.5 ? std::acos(std::pow(0.5 / light.specular, 1 / light.shininess)) : 0.0),
+        whole_(light.shininess == std::floor(light.shininess) && light.shininess <= 256
+                   ? static_cast<unsigned>(light.shininess)
+                   : 0U) {}
 
   /// Direct irradiance, a fraction of full light (a surface facing the light straight below it, at
   /// the light's height): cos(normal, towards the light) x (height / distance)^2; 0 facing away.
@@ -46,14 +51,51 @@ class Shader {
     if (c <= cutoff_) return 0;
     return light_.specular * std::pow(c, light_.shininess) * height2_ / d2;
   }
+  /// The light leaving a surface of `albedo` (gray levels) at `point` with unit `normal` towards
+  /// the viewer: albedo x lit(direct) + highlight, in one pass over the shared vectors. If
+  /// `mirror` is given, the cosine of the normal's angle from the mirror direction goes there
+  /// (-1 facing away from the light).
+  [[nodiscard]] double surface(double albedo, const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+                               double* mirror = nullptr) const {
+    const Eigen::Vector3d to_light = position_ - point;
+    const double d2 = to_light.squaredNorm();
+    const double inverse = 1 / std::sqrt(d2);
+    const double cosine = normal.dot(to_light) * inverse;
+    if (mirror) *mirror = -1;
+    if (cosine <= 0) return albedo * light_.ambient;
+    const double falloff = height2_ / d2;
+    double out = albedo * lit(cosine * falloff);
+    if (light_.specular > 0) {
+      const Eigen::Vector3d half = (to_light * inverse - point.normalized()).normalized();
+      const double c = normal.dot(half);
+      if (mirror) *mirror = c;
+      if (c > cutoff_) out += light_.specular * power(c) * falloff;
+    }
+    return out;
+  }
+  /// The angle (radians) from the mirror direction beyond which the highlight is under half a gray
+  /// level (0: no highlight).
+  [[nodiscard]] double visible_angle() const { return visible_angle_; }
   [[nodiscard]] const Eigen::Vector3d& position() const { return position_; }
   [[nodiscard]] const PointLight& light() const { return light_; }
 
  private:
+  // c^shininess: by squaring for whole exponents up to 256 (a few multiplications instead of pow).
+  [[nodiscard]] double power(double c) const {
+    if (whole_ == 0) return std::pow(c, light_.shininess);
+    double result = 1;
+    for (unsigned e = whole_; e != 0; e >>= 1U, c *= c) {
+      if ((e & 1U) != 0) result *= c;
+    }
+    return result;
+  }
+
   PointLight light_;
   Eigen::Vector3d position_;
   double height2_;
   double cutoff_;
+  double visible_angle_;
+  unsigned whole_;  // the exponent if it is a whole number up to 256, else 0
 };
 
 }  // namespace neopipe::sim

@@ -1,47 +1,64 @@
 #include "sim/table_texture.hpp"
 
-#include <cmath>
-
 namespace neopipe::sim {
 namespace {
 
-// A lattice point's value in [-1, 1]: the SplitMix64 finaliser of its coordinates and the seed.
-double lattice_value(std::int64_t i, std::int64_t j, std::uint64_t seed) {
-  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ULL) ^
-                    (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4FULL);
-  z = (z ^ (z >> 30U)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27U)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31U;
-  return static_cast<double>(z >> 11U) * 0x1.0p-52 - 1.0;
+// A lattice point's value in [-1, 1): an integer hash of its coordinates and the seed
+// (multiply-xorshift rounds, well mixed in every bit).
+inline float lattice_value(std::int32_t i, std::int32_t j, std::uint32_t seed) {
+  std::uint32_t h =
+      (static_cast<std::uint32_t>(i) * 0x8DA6B343U) ^ (static_cast<std::uint32_t>(j) * 0xD8163841U) ^ seed;
+  h ^= h >> 16U;
+  h *= 0x7FEB352DU;
+  h ^= h >> 15U;
+  h *= 0x846CA68BU;
+  h ^= h >> 16U;
+  return static_cast<float>(h >> 8U) * (2.0F / 16777216.0F) - 1.0F;
 }
 
-double smoothstep(double t) {
-  return t * t * (3 - 2 * t);
+// floor for the table's coordinates (far inside int32), written so the loop vectorises (GCC does
+// not vectorise std::floor here).
+inline std::int32_t floor_int(float v) {
+  const auto t = static_cast<std::int32_t>(v);
+  return t - (v < static_cast<float>(t) ? 1 : 0);
+}
+
+inline float octave(float x, float y, std::uint32_t seed) {
+  const std::int32_t i = floor_int(x);
+  const std::int32_t j = floor_int(y);
+  const auto fx = static_cast<float>(i);
+  const auto fy = static_cast<float>(j);
+  const float tu = x - fx;
+  const float tv = y - fy;
+  const float u = tu * tu * (3 - 2 * tu);  // smoothstep
+  const float v = tv * tv * (3 - 2 * tv);
+  const float a = lattice_value(i, j, seed);
+  const float b = lattice_value(i + 1, j, seed);
+  const float c = lattice_value(i, j + 1, seed);
+  const float d = lattice_value(i + 1, j + 1, seed);
+  return (1 - v) * (a + u * (b - a)) + v * (c + u * (d - c));
+}
+
+inline float texture(float x, float y, float inverse_scale, std::uint32_t seed) {
+  const float sx = x * inverse_scale;
+  const float sy = y * inverse_scale;
+  return (2 * octave(sx, sy, seed) + octave(2 * sx, 2 * sy, seed + 1)) * (1.0F / 3);
 }
 
 }  // namespace
 
 TableTexture::TableTexture(double scale_mm, std::uint64_t seed)
-    : inverse_scale_(1 / scale_mm), seed_(seed * 0x9E3779B97F4A7C15ULL + 0x7461626C65ULL) {}  // "table"
+    : inverse_scale_(static_cast<float>(1 / scale_mm)),
+      seed_(static_cast<std::uint32_t>((seed * 0x9E3779B97F4A7C15ULL + 0x7461626C65ULL) >> 32U)) {}  // "table"
 
-double TableTexture::octave(double x, double y, std::uint64_t seed) const {
-  const double fx = std::floor(x);
-  const double fy = std::floor(y);
-  const auto i = static_cast<std::int64_t>(fx);
-  const auto j = static_cast<std::int64_t>(fy);
-  const double u = smoothstep(x - fx);
-  const double v = smoothstep(y - fy);
-  const double a = lattice_value(i, j, seed);
-  const double b = lattice_value(i + 1, j, seed);
-  const double c = lattice_value(i, j + 1, seed);
-  const double d = lattice_value(i + 1, j + 1, seed);
-  return (1 - v) * (a + u * (b - a)) + v * (c + u * (d - c));
+float TableTexture::operator()(float x, float y) const {
+  return texture(x, y, inverse_scale_, seed_);
 }
 
-double TableTexture::operator()(double x, double y) const {
-  const double sx = x * inverse_scale_;
-  const double sy = y * inverse_scale_;
-  return (2 * octave(sx, sy, seed_) + octave(2 * sx, 2 * sy, seed_ + 1)) / 3;
+void TableTexture::evaluate(const float* x, const float* y, float* out, int n) const {
+  const float s = inverse_scale_;
+  const std::uint32_t seed = seed_;
+  for (int i = 0; i < n; ++i) out[i] = texture(x[i], y[i], s, seed);
 }
 
 }  // namespace neopipe::sim

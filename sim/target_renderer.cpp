@@ -173,9 +173,14 @@ cv::Mat render_target(const CalibrationTarget& g, const TargetPose& pose, const 
 
 cv::Mat render_target(const CalibrationTarget& g, const TargetPose& pose, const PinholeCamera& camera,
                       const SceneRenderer& renderer, std::int64_t frame) {
+  return renderer.expose(target_light(g, pose, camera, renderer), frame);
+}
+
+cv::Mat target_light(const CalibrationTarget& g, const TargetPose& pose, const PinholeCamera& camera,
+                     const SceneRenderer& renderer) {
   const Rendering& r = renderer.rendering();
   const Shades sh = shades_of(g, r.surfaces.table, r.surfaces.marble);
-  if (r.is_image_model()) return renderer.expose(flat_light(g, pose, camera, sh), frame);
+  if (r.is_image_model()) return flat_light(g, pose, camera, sh);
 
   // The printed face (matte) lit by the light at its own angle; around the board, the table.
   const cv::Size size = camera.size();
@@ -204,7 +209,7 @@ cv::Mat render_target(const CalibrationTarget& g, const TargetPose& pose, const 
       row[x] = static_cast<float>(board + p.outside * table.at(x, y));
     }
   }
-  return renderer.expose(light, frame);
+  return light;
 }
 
 }  // namespace neopipe::sim

@@ -55,5 +55,8 @@ cv::Mat render_target(const CalibrationTarget& target, const TargetPose& pose, c
 /// ImageModel settings (the ideal preset), the MarbleRenderer overload's image exactly.
 cv::Mat render_target(const CalibrationTarget& target, const TargetPose& pose, const PinholeCamera& camera,
                       const SceneRenderer& renderer, std::int64_t frame = 0);
+/// The light (CV_32F gray levels) that overload exposes: before defocus, vignetting and noise.
+cv::Mat target_light(const CalibrationTarget& target, const TargetPose& pose, const PinholeCamera& camera,
+                     const SceneRenderer& renderer);
 
 }  // namespace neopipe::sim
