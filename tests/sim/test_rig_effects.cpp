@@ -306,31 +306,37 @@ TEST(RigEffects, NoiseVarianceGrowsWithTheSignalAsTheFullWellSays) {
 }
 
 TEST(RigEffects, PrnuIsFixedFromFrameToFrame) {
-  sim::Rendering r = rig(sim::CameraKind::onboard);
-  r.sensor.read_noise = 0;
-  r.sensor.full_well.reset();
-  r.sensor.prnu = 0.02;
+  // PRNU alone, for the sensor seeded by `seed`.
+  const auto prnu_only = [](std::uint64_t seed) {
+    sim::Rendering r = rig(sim::CameraKind::onboard);
+    r.sensor.read_noise = 0;
+    r.sensor.full_well.reset();
+    r.sensor.prnu = 0.02;
+    r.sensor.seed = seed;
+    return r;
+  };
+  const sim::Rendering r = prnu_only(1);
   const cv::Mat a = flat_frame(r, 160, 0);
   EXPECT_EQ(cv::norm(a, flat_frame(r, 160, 9), cv::NORM_INF), 0);  // the same pattern every frame
   cv::Scalar mean;
   cv::Scalar sd;
   cv::meanStdDev(a, mean, sd);
   EXPECT_NEAR(sd[0], std::sqrt(std::pow(0.02 * 160, 2) + 1.0 / 12), 0.1);
-  sim::Rendering other = r;
-  other.sensor.seed = 9;
+  const sim::Rendering other = prnu_only(9);
   cv::Mat fa;
   cv::Mat fb;
   a.convertTo(fa, CV_32F, 1, -mean[0]);
   flat_frame(other, 160, 0).convertTo(fb, CV_32F, 1, -mean[0]);
   EXPECT_LT(std::abs(fa.dot(fb)) / (cv::norm(fa) * cv::norm(fb)), 0.05);  // another camera, another pattern
   // Under noise, averages of different frames agree on the pattern.
-  r.sensor.read_noise = 1.5;
-  r.sensor.full_well = 12000.0;
+  sim::Rendering noisy = prnu_only(1);
+  noisy.sensor.read_noise = 1.5;
+  noisy.sensor.full_well = 12000.0;
   cv::Mat first = cv::Mat::zeros(256, 256, CV_32F);
   cv::Mat second = cv::Mat::zeros(256, 256, CV_32F);
   for (int f = 0; f < 16; ++f) {
-    cv::accumulate(flat_frame(r, 160, f), first);
-    cv::accumulate(flat_frame(r, 160, 16 + f), second);
+    cv::accumulate(flat_frame(noisy, 160, f), first);
+    cv::accumulate(flat_frame(noisy, 160, 16 + f), second);
   }
   first -= cv::mean(first);
   second -= cv::mean(second);
