@@ -24,7 +24,7 @@ namespace {
 using Eigen::Vector2d;
 
 // Bumped whenever the session's recipe changes, so cached sessions of the old recipe go stale.
-constexpr int kRecipe = 2;
+constexpr int kRecipe = 3;
 
 // The board's views: a 15 x 15 dot grid (pitch 5% of the workspace's shorter side, 25 mm on the
 // default 500 mm world) centred on the workspace, flat on the table first, then raised and tipped
@@ -148,7 +148,7 @@ GlobalCameraSession calibrate_session(const Vector2d& workspace, double marble_d
     matched.push_back(at);
   }
   const calib::CentroidBiasFit fit =
-      calib::fit_centroid_bias(matched, projected, rig.camera.size(), settings.bias_degree);
+      calib::fit_centroid_bias(matched, projected, rig.camera.size(), settings.bias_degree, 10);
   session.bias = fit.bias;
   session.bias_held_out_px = fit.held_out;
 
