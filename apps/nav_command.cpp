@@ -212,7 +212,7 @@ int one_journey(const NavArgs& a, const Setup& s) {
     ExecutedRoute executed;
     executed.track = r.arm.track;
     const double half = s.settings.map.window.side / 2;
-    for (const rig::HeldLandmark& h : r.held) executed.held_windows.push_back(h.tool - Eigen::Vector2d(half, half));
+    for (const rig::HeldLandmark& h : r.held) executed.held_windows.emplace_back(h.tool - Eigen::Vector2d(half, half));
     executed.caption = std::string(rig::outcome_name(r.outcome));
     write_map_plot(system->maker(), route, a.plot, &executed);
   }

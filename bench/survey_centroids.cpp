@@ -83,7 +83,9 @@ struct Tally {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"Centroid bias of the global camera's survey: binary, weighted and fitted, raw and corrected"};
   std::string realism = "rig";
   int worlds = 3;
@@ -119,6 +121,7 @@ int main(int argc, char** argv) {
                                         plate_projected, radius_px, fit);
     const auto truth = sim::marble_truth(world.objects, world.marble_diameter, r.camera, r.rendering.shape);
     std::vector<Vector2d> centres;
+    centres.reserve(truth.size());
     for (const auto& t : truth) centres.emplace_back(t.u, t.v);
     const Estimates on_world = estimate(
         renderer.render(world.objects, world.marble_diameter, r.camera, rig::kWorldFrame), centres, radius_px, fit);
@@ -157,7 +160,19 @@ int main(int argc, char** argv) {
                              std::sqrt(t.raw2 / n), std::sqrt(t.corrected2 / n), std::sqrt(t.raw_mm2 / n),
                              std::sqrt(t.corrected_mm2 / n));
   }
-  if (fit)
+  if (fit) {
     std::cout << fmt::format("model fit: {:.3f} s per marble\n", fit_seconds / (tally[fitted].n + 144.0 * worlds));
+  }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "neopipe_survey_centroids: error: " << e.what() << '\n';
+    return 1;
+  }
 }

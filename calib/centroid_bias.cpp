@@ -63,8 +63,9 @@ CentroidBiasFit fit_centroid_bias(const std::vector<Eigen::Vector2d>& centroids,
     throw CalibrationError("centroid bias: " + std::to_string(centroids.size()) + " centroids but " +
                            std::to_string(projected.size()) + " projected centres");
   }
-  const auto needed = static_cast<std::size_t>(2 * CentroidBias::terms(degree));
-  if (degree < 0 || centroids.size() < needed) {
+  if (degree < 0) throw CalibrationError("centroid bias: degree " + std::to_string(degree) + " is negative");
+  const std::size_t needed = 2 * static_cast<std::size_t>(CentroidBias::terms(degree));
+  if (centroids.size() < needed) {
     throw CalibrationError("centroid bias: " + std::to_string(centroids.size()) + " points for a field of degree " +
                            std::to_string(degree) + " (needs at least " + std::to_string(needed) + ")");
   }
@@ -73,7 +74,7 @@ CentroidBiasFit fit_centroid_bias(const std::vector<Eigen::Vector2d>& centroids,
   CentroidBiasFit f;
   f.bias = solve(centroids, projected, all, image_size, degree);
   std::vector<Eigen::Vector2d> errors;
-  for (std::size_t i = 0; i < all.size(); ++i) errors.push_back(f.bias.correct(centroids[i]) - projected[i]);
+  for (std::size_t i = 0; i < all.size(); ++i) errors.emplace_back(f.bias.correct(centroids[i]) - projected[i]);
   f.fit = error_stats(errors);
   // Folds by index modulo k: the plate's objects are in raster order, so each fold spans the image.
   errors.assign(all.size(), Eigen::Vector2d::Zero());

@@ -12,8 +12,8 @@
 // the expected one.
 //
 // Measured on the rig's global camera (bench/survey_centroids.cpp, docs/calibration.md): nearly
-// unbiased (0.006 px mean) but scattered (0.11 px RMS: some fits settle on the wrong shadow) and
-// slow (0.17 s a marble). The survey uses the weighted centroid corrected for its measured lean
+// unbiased (0.005 px mean) but scattered (0.11 px RMS: some fits settle on the wrong shadow) and
+// slow (0.19 s a marble). The survey uses the weighted centroid corrected for its measured lean
 // instead (0.02 px RMS); this fit is the third candidate it was measured against. The edge's position is set by the
 // edge pixels, where the blurred step lies, whatever the levels on either side, so shading, highlight and shadow no
 // longer pull the centre.

@@ -155,7 +155,7 @@ GlobalCameraSession calibrate_session(const Vector2d& workspace, double marble_d
   // 3. The plate through the whole survey, each marble by a field fitted without it.
   const std::vector<Vector2d> located = calib::to_world_at_height(session.calibration, fit.held_out_corrected, height);
   std::vector<Vector2d> misses;
-  for (std::size_t i = 0; i < plate.size(); ++i) misses.push_back(located[i] - plate[i]);
+  for (std::size_t i = 0; i < plate.size(); ++i) misses.emplace_back(located[i] - plate[i]);
   session.plate_held_out_mm = calib::error_stats(misses);
   session.plate_marbles = static_cast<int>(plate.size());
   return session;

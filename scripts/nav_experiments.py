@@ -6,12 +6,15 @@ their JSON (standard library only). Usage:
 
     scripts/nav_experiments.py [--neopipe build/apps/neopipe] [--out DIR] [--trials 1000] [TABLE ...]
 
-TABLE is any of: main, seeds, sensor, throughput (default: all). Worlds are made in DIR with
+TABLE is any of: main, seeds, sensor, paired, throughput (default: all). Runs are kept in DIR as
+JSON and reused while the program is the same build. Worlds are made in DIR with
 `neopipe sim world`, as the document's commands do. Every command is echoed on stderr.
 """
 
 import argparse
+import hashlib
 import json
+import math
 import os
 import subprocess
 import sys
@@ -33,12 +36,70 @@ def world(args, objects, seed):
     return path
 
 
-def nav(args, world_path, *extra, trials=None):
+def nav(args, world_path, *extra, trials=None, fresh=False):
+    """One run's JSON. Runs are kept in the output folder, keyed by the command and the program's
+    build, so that tables sharing a run (the paired comparisons) do not run it twice; `fresh` (the
+    throughput) always runs."""
     cmd = [args.neopipe, "nav", "--world", world_path, "--trials", str(trials or args.trials), "--json", *extra]
+    key = hashlib.sha1((" ".join(cmd) + str(os.path.getmtime(args.neopipe))).encode()).hexdigest()[:16]
+    cached = os.path.join(args.out, f"run-{key}.json")
+    if not fresh and os.path.exists(cached):
+        with open(cached) as f:
+            return json.load(f)
     start = time.monotonic()
     j = json.loads(run(cmd))
     j["wall"] = time.monotonic() - start
+    with open(cached, "w") as f:
+        json.dump(j, f)
     return j
+
+
+def mcnemar(a_only, b_only):
+    """Exact two-sided McNemar (sign) test."""
+    n = a_only + b_only
+    if n == 0:
+        return 1.0
+    k = min(a_only, b_only)
+    return min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n)
+
+
+def reached(journey):
+    return journey["outcome"].startswith("success")
+
+
+def paired(a, b):
+    ja, jb = a["journeys"], b["journeys"]
+    assert [(x["from"], x["to"]) for x in ja] == [(x["from"], x["to"]) for x in jb], "not the same journeys"
+    a_only = sum(reached(x) and not reached(y) for x, y in zip(ja, jb))
+    b_only = sum(reached(y) and not reached(x) for x, y in zip(ja, jb))
+    return a_only, b_only, mcnemar(a_only, b_only)
+
+
+def pvalue(p):
+    return f"{p:.2g}" if p >= 1e-3 else f"{p:.1e}"
+
+
+def paired_table(args):
+    print("| world, criterion | with recovery | without | recovery only / stripped only | McNemar p |")
+    print("|---|---:|---:|---:|---:|")
+    for objects in (100, 400):
+        w = world(args, objects, 1)
+        for cost in ("distance", "ratio", "reliability"):
+            on = nav(args, w, "--cost", cost)
+            off = nav(args, w, "--cost", cost, "--no-recovery")
+            a, b, p = paired(on, off)
+            print(f"| w{objects}, {cost} | {pct(on['reached_goal_rate'])} | {pct(off['reached_goal_rate'])} | "
+                  f"{a} / {b} | {pvalue(p)} |", flush=True)
+    print()
+    print("| world | a against b | a | b | a only / b only | McNemar p |")
+    print("|---|---|---:|---:|---:|---:|")
+    for objects in (100, 400):
+        w = world(args, objects, 1)
+        runs = {cost: nav(args, w, "--cost", cost) for cost in ("distance", "ratio", "reliability")}
+        for x, y in (("ratio", "distance"), ("reliability", "distance"), ("ratio", "reliability")):
+            a, b, p = paired(runs[x], runs[y])
+            print(f"| w{objects} | {x} against {y} | {pct(runs[x]['reached_goal_rate'])} | "
+                  f"{pct(runs[y]['reached_goal_rate'])} | {a} / {b} | {pvalue(p)} |", flush=True)
 
 
 def pct(x):
@@ -109,14 +170,15 @@ def throughput_table(args):
     print("| threads | seconds | frames | frames/s |")
     print("|---:|---:|---:|---:|")
     w = world(args, 100, 1)
-    nav(args, w, trials=1)  # the survey's session into the cache first
+    nav(args, w, trials=1, fresh=True)  # the survey's session into the calibration cache first
     for threads in ("2", "1"):
         for _ in range(3):
-            j = nav(args, w, "--threads", threads)
+            j = nav(args, w, "--threads", threads, fresh=True)
             print(f"| {threads} | {j['seconds']:.2f} | {j['frames']:,} | {j['frames_per_second']:,.0f} |", flush=True)
 
 
-TABLES = {"main": main_table, "seeds": seeds_table, "sensor": sensor_table, "throughput": throughput_table}
+TABLES = {"main": main_table, "seeds": seeds_table, "sensor": sensor_table, "paired": paired_table,
+          "throughput": throughput_table}
 
 
 def parse():
