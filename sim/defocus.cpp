@@ -7,10 +7,7 @@
 namespace neopipe::sim {
 
 DefocusBlur::DefocusBlur(const Defocus& d, cv::Size size)
-    : defocus_(d),
-      size_(size),
-      half_diagonal2_((size.width * size.width + size.height * size.height) / 4.0),
-      step_(0.02) {
+    : defocus_(d), size_(size), half_diagonal2_((size.width * size.width + size.height * size.height) / 4.0) {
   const double lo = std::min(d.centre, d.corner);
   const double hi = std::max(d.centre, d.corner);
   if (hi <= 0) return;

@@ -32,7 +32,7 @@ class DefocusBlur {
   Defocus defocus_;
   cv::Size size_;
   double half_diagonal2_;
-  double step_;
+  double step_ = 0.02;           // px of sigma between the bank's blurs
   std::vector<PatchBlur> bank_;  // sigmas centre, centre + step, ... corner; empty for no blur
 };
 

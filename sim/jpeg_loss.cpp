@@ -43,8 +43,8 @@ cv::Mat jpeg_loss(const cv::Mat& gray, int quality) {
       cv::Mat block = level(cv::Rect(x, y, 8, 8));
       cv::dct(block, coeffs);
       for (int i = 0; i < 64; ++i) {
-        float& c = coeffs.at<float>(i / 8, i % 8);
-        const float step = q.at<float>(i / 8, i % 8);
+        auto& c = coeffs.at<float>(i / 8, i % 8);
+        const auto step = q.at<float>(i / 8, i % 8);
         c = std::round(c / step) * step;
       }
       cv::idct(coeffs, block);

@@ -44,7 +44,8 @@ cv::Mat SensorModel::expose(const cv::Mat& even, const cv::Mat& odd, std::int64_
       const float signal = std::max(0.0F, g[x] * light[x]);
       float v = signal + std::sqrt(read2 + shot * signal) * n[x];
       v = std::min(std::max(v, 0.0F), 255.0F);
-      o[x] = static_cast<std::uint8_t>(v + 0.5F);
+      o[x] = static_cast<std::uint8_t>(
+          v + 0.5F);  // NOLINT(bugprone-incorrect-roundings): v >= 0, and lround is slower here
     }
   }
   return out;

@@ -13,6 +13,7 @@ namespace neopipe::sim {
 class Shader {
  public:
   /// `light_position` in the camera's frame, `light_height` mm above the table.
+  // NOLINTNEXTLINE(modernize-pass-by-value): the members after light_ read `light`
   Shader(const PointLight& light, const Eigen::Vector3d& light_position, double light_height)
       : light_(light),
         position_(light_position),

@@ -38,7 +38,7 @@ TableField::TableField(const Rendering& rendering, const TableTexture& texture, 
   }
   // Node i sits at pixel -margin + i spacing; one more node than the span needs, so at() may read
   // the node after the one it is in.
-  columns_ = static_cast<std::size_t>((size_.width + 2 * margin - 1) / spacing + 2);
+  columns_ = static_cast<std::size_t>((size_.width + 2 * margin - 1) / spacing) + 2;
   const int rows = (size_.height + 2 * margin - 1) / spacing + 2;
   nodes_.resize(columns_ * static_cast<std::size_t>(rows));
 
