@@ -26,7 +26,7 @@ TEST(CentroidBias, RecoversASmoothLeanToItsNoise) {
     for (int j = 0; j < 12; ++j) {
       const Vector2d p(60 + 105.0 * i, 50 + 78.0 * j);
       projected.push_back(p);
-      centroids.push_back(p + lean(p) + Vector2d(rng.normal(0, 0.01), rng.normal(0, 0.01)));
+      centroids.emplace_back(p + lean(p) + Vector2d(rng.normal(0, 0.01), rng.normal(0, 0.01)));
     }
   }
   const calib::CentroidBiasFit f = calib::fit_centroid_bias(centroids, projected, {1280, 960}, 2);

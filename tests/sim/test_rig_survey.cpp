@@ -70,6 +70,7 @@ std::vector<Vector2d> to_height(const calib::Calibration& c, const std::vector<V
   const Vector3d t = scale * m.col(2);
   const Vector3d centre = -r.transpose() * t;
   std::vector<cv::Point2d> px;
+  px.reserve(pixels.size());
   for (const auto& p : pixels) px.emplace_back(p.x(), p.y());
   std::vector<cv::Point2d> normalised;
   cv::undistortPoints(px, normalised, c.camera_matrix, c.distortion_coefficients);

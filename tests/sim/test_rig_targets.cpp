@@ -70,6 +70,7 @@ TEST(RigTargets, OpenCVFindsEveryChessboardCorner) {
     ASSERT_TRUE(cv::findChessboardCorners(image, {9, 6}, corners));
     cv::cornerSubPix(image, corners, {5, 5}, {-1, -1}, {cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4});
     std::vector<Eigen::Vector2d> found;
+    found.reserve(corners.size());
     for (const auto& c : corners) found.emplace_back(c.x, c.y);
     ASSERT_EQ(found.size(), 54U);
     const double rms = rms_nearest_px(sim::projected_target_points(board, pose, camera), found);

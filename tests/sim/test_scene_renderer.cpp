@@ -245,9 +245,11 @@ TEST(SceneRenderer, OneRendererOnManyThreadsGivesTheSamePixels) {
   const sim::SceneRenderer renderer(r, camera_at(0));
   constexpr int kFrames = 32;
   std::vector<cv::Mat> sequential;
+  sequential.reserve(kFrames);
   for (int i = 0; i < kFrames; ++i) sequential.push_back(renderer.render(w.objects, 5, camera_at(i), i));
   std::vector<cv::Mat> concurrent(kFrames);
   std::vector<std::thread> threads;
+  threads.reserve(4);
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       for (int i = t; i < kFrames; i += 4)
