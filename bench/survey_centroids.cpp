@@ -22,6 +22,7 @@
 #include "calib/centroid_bias.hpp"
 #include "calib/marble_fit.hpp"
 #include "calib/plane_pose.hpp"
+#include "calib/residual_plot.hpp"
 #include "kernels/blobs.hpp"
 #include "rig/global_camera.hpp"
 #include "sim/marble_truth.hpp"
@@ -90,11 +91,16 @@ int run(int argc, char** argv) {
   std::string realism = "rig";
   int worlds = 3;
   bool fit = false;
+  std::string plot;
   app.add_option("--realism", realism, "Preset")
       ->check(CLI::IsMember({"ideal", "rig", "harsh"}))
       ->capture_default_str();
   app.add_option("--worlds", worlds, "Default worlds (100 marbles, seeds 1..N)")->capture_default_str();
-  app.add_flag("--fit", fit, "Also the shaded-sphere model fit (about 0.15 s per marble)");
+  app.add_flag("--fit", fit, "Also the shaded-sphere model fit (about 0.2 s per marble)");
+  app.add_option("--plot", plot,
+                 "Write PREFIX-raw.png and PREFIX-corrected.png: the first world's surveyed minus true positions "
+                 "by the weighted centroid, before and after the lean's correction")
+      ->type_name("PREFIX");
   CLI11_PARSE(app, argc, argv);
 
   std::array<Tally, kEstimates> tally{};
@@ -135,6 +141,22 @@ int run(int argc, char** argv) {
       for (const Vector2d& p : found) corrected.push_back(lean.correct(p));
       const auto raw_mm = calib::to_world_at_height(session.calibration, found, height);
       const auto corrected_mm = calib::to_world_at_height(session.calibration, corrected, height);
+      if (k == weighted && w == 1 && !plot.empty()) {
+        calib::Correspondences at;
+        std::vector<Vector2d> raw_errors;
+        std::vector<Vector2d> corrected_errors;
+        for (std::size_t i = 0; i < found.size(); ++i) {
+          const Vector2d w_true = world.objects[static_cast<std::size_t>(truth[i].id)];
+          at.push_back({found[i], w_true});
+          raw_errors.emplace_back(raw_mm[i] - w_true);
+          corrected_errors.emplace_back(corrected_mm[i] - w_true);
+        }
+        calib::write_residual_plot(at, raw_errors, realism + ": weighted centroids, surveyed minus true (mm)",
+                                   plot + "-raw.png");
+        calib::write_residual_plot(at, corrected_errors,
+                                   realism + ": the same, corrected for the lean the check plate measured",
+                                   plot + "-corrected.png");
+      }
       Tally& t = tally[static_cast<std::size_t>(k)];
       for (std::size_t i = 0; i < found.size(); ++i) {
         const Vector2d w_true = world.objects[static_cast<std::size_t>(truth[i].id)];
