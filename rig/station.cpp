@@ -61,9 +61,7 @@ Station::Station(const sim::World& world, const StationSettings& settings, const
            start),
       adapter_(std::make_unique<ArmAdapter>(arm_, log_)) {
   log_.track.emplace_back(start.x, start.y);
-  sim::Rendering rendering = settings.rendering
-                                 ? *settings.rendering
-                                 : sim::rendering_for(settings.realism, sim::CameraKind::onboard, world.size);
+  sim::Rendering rendering = sim::rendering_for(settings.realism, sim::CameraKind::onboard, world.size);
   rendering.sensor.seed = stream_seed(settings.seed, streams::onboard_camera);
   const sim::OnboardCameraConfig camera = sim::onboard_config_for(rendering, world.marble_diameter, settings.camera);
   camera_ = sim::onboard_camera_source(

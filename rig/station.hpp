@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "nav/common/arm.hpp"
@@ -44,8 +43,7 @@ sim::ScaraGeometry arm_for_world(const sim::World& world, double window_side);
 struct StationSettings {
   sim::MotionErrors motion;                  ///< the arm's errors (motion_errors(ArmErrors) for an experiment's)
   sim::OnboardCameraConfig camera;           ///< image size and view window (its plane follows the rendering)
-  sim::Realism realism = sim::Realism::rig;  ///< the onboard camera's preset ...
-  std::optional<sim::Rendering> rendering;   ///< ... or these settings (their noise seed is replaced)
+  sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera (its noise seeded per journey)
   std::uint64_t seed = 1;                    ///< this journey's arm errors and camera noise (two streams)
 };
 
