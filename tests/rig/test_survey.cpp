@@ -50,16 +50,23 @@ TEST(Survey, RigRealismWithinFiveHundredthsOfAMillimetre) {
   }
 }
 
-// The spheres' centres are a radius above the table: the global camera sees them displaced from
-// their contact points by up to ~0.6 mm towards the image's edges (the u0, v0 of the truth). Mapping
-// the centroids as if they lay on the table keeps that parallax; the survey maps them at their
-// height and does not.
-TEST(Survey, RemovesTheParallaxOfTheSpheresHeight) {
+// The default world under the rig's realism: its calibration session, the camera and where every
+// marble's centre and contact point truly project.
+class RigSurveyOfTheDefaultWorld : public ::testing::Test {
+ protected:
   const sim::World world = default_world(1);
   const rig::SurveySettings s = settings(sim::Realism::rig, 1);
   const rig::GlobalCameraSession session = rig::global_camera_session(world, s);
   const rig::GlobalCameraRig rig = rig::make_global_camera_rig(world.size, s.camera);
-  const auto truth = sim::marble_truth(world.objects, world.marble_diameter, rig.camera, rig.rendering.shape);
+  const std::vector<sim::MarbleTruth> truth =
+      sim::marble_truth(world.objects, world.marble_diameter, rig.camera, rig.rendering.shape);
+};
+
+// The spheres' centres are a radius above the table: the global camera sees them displaced from
+// their contact points by up to ~0.6 mm towards the image's edges (the u0, v0 of the truth). Mapping
+// the centroids as if they lay on the table keeps that parallax; the survey maps them at their
+// height and does not.
+TEST_F(RigSurveyOfTheDefaultWorld, RemovesTheParallaxOfTheSpheresHeight) {
   ASSERT_EQ(truth.size(), world.objects.size());
   double parallax = 0;
   std::vector<Vector2d> centres;
@@ -87,12 +94,7 @@ TEST(Survey, RemovesTheParallaxOfTheSpheresHeight) {
 
 // The lamp pulls the weighted centroids by a third of a pixel; the check plate measures that lean
 // and the survey removes it, to about the centroids' noise.
-TEST(Survey, TheLampsLeanIsMeasuredAndRemoved) {
-  const sim::World world = default_world(1);
-  const rig::SurveySettings s = settings(sim::Realism::rig, 1);
-  const rig::GlobalCameraSession session = rig::global_camera_session(world, s);
-  const rig::GlobalCameraRig rig = rig::make_global_camera_rig(world.size, s.camera);
-  const auto truth = sim::marble_truth(world.objects, world.marble_diameter, rig.camera, rig.rendering.shape);
+TEST_F(RigSurveyOfTheDefaultWorld, TheLampsLeanIsMeasuredAndRemoved) {
   const sim::SceneRenderer renderer(rig.rendering, rig.camera);
   const auto centroids =
       rig::marble_centroids(renderer.render(world.objects, world.marble_diameter, rig.camera, rig::kWorldFrame));

@@ -45,6 +45,14 @@ inline sim::Rendering quiet(sim::Rendering r) {
   return r;
 }
 
+/// A random world of `objects` marbles on the default 500 x 500 mm workspace.
+inline sim::World world(int objects, std::uint64_t seed) {
+  sim::WorldRequest q;
+  q.objects = objects;
+  q.seed = seed;
+  return sim::generate_world(q);
+}
+
 inline sim::Rendering rig(sim::CameraKind kind) {
   return sim::rendering_for(sim::Realism::rig, kind);
 }

@@ -13,13 +13,6 @@ using namespace rig_test;  // NOLINT(google-build-using-namespace)
 
 namespace {
 
-sim::World world(int objects, std::uint64_t seed) {
-  sim::WorldRequest q;
-  q.objects = objects;
-  q.seed = seed;
-  return sim::generate_world(q);
-}
-
 // The frame's signal before the lens blurs it and the sensor adds noise (light through vignetting
 // and PRNU), and which pixels lie wholly inside a marble's outline or wholly outside every one.
 struct Signal {

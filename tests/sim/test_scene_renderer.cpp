@@ -20,13 +20,6 @@ using namespace rig_test;  // NOLINT(google-build-using-namespace)
 
 namespace {
 
-sim::World world(int objects, std::uint64_t seed) {
-  sim::WorldRequest q;
-  q.objects = objects;
-  q.seed = seed;
-  return sim::generate_world(q);
-}
-
 std::string error_of(const sim::Rendering& r) {
   try {
     r.validate();
