@@ -12,11 +12,13 @@
 #include "apps/map_plot.hpp"
 #include "apps/nav_video.hpp"
 #include "apps/progress.hpp"
+#include "apps/reliability_diagram.hpp"
 #include "nav/mapmaker/map_maker.hpp"
 #include "rig/calibration_cache.hpp"
 #include "rig/experiment.hpp"
 #include "rig/journey.hpp"
 #include "rig/park_kender.hpp"
+#include "rig/seeds.hpp"
 #include "rig/survey.hpp"
 #include "rig/trials.hpp"
 #include "sim/realism.hpp"
@@ -74,6 +76,8 @@ Setup make_setup(const NavArgs& a) {
   config.window = a.window;
   config.arm = {a.sigma_move, a.sigma_rot};
   config.recovery = !a.no_recovery;
+  config.track_heading = a.navigator == "tracking";
+  config.min_reliability = a.min_reliability;
   config.seed = a.seed;
   config.realism = realism;
   s.settings = rig::derive_settings(config, s.survey.sigma);
@@ -105,6 +109,19 @@ std::string step_name(const mm::RouteStep& step) {
   return fmt::format("{} {} -> {}", mm::step_description(step.step), step.step.from.object, step.step.landmark);
 }
 
+// Each planned step's kind, rated reliability and verifiability, for fitting and checking the
+// forecast journey by journey.
+json steps_json(const mm::Route& route) {
+  json steps = json::array();
+  for (const mm::RouteStep& s : route.steps) {
+    steps.push_back({{"step", step_name(s)},
+                     {"R", s.step.reliability},
+                     {"forecast", s.step.forecast},
+                     {"check", mm::verifiability_name(s.check.kind)}});
+  }
+  return steps;
+}
+
 json held_json(const rig::JourneyResult& r, std::size_t entry) {
   for (auto it = r.held.rbegin(); it != r.held.rend(); ++it) {
     if (it->entry == entry) {
@@ -132,8 +149,17 @@ int one_journey(const NavArgs& a, const Setup& s) {
     print_error("nav", e.what());
     return kExitUnreachable;
   }
+  if (!plan->refused.empty()) {
+    print_error("nav", fmt::format("refused: {} (--min-reliability)", plan->refused));
+    return kExitUnreachable;
+  }
   const mm::Route& route = rig::route_of(*plan);
-  const rig::JourneyResult r = rig::run_journey(*system, *plan, s.world, s.settings.journey);
+  rig::JourneySettings journey = s.settings.journey;
+  if (a.as_trial) {
+    if (*a.as_trial < 0) throw UsageError{fmt::format("--as-trial {}: trials are numbered from 0", *a.as_trial)};
+    journey.seed = rig::trial_seed(journey.seed, *a.as_trial);
+  }
+  const rig::JourneyResult r = rig::run_journey(*system, *plan, s.world, journey);
   if (video) video->close();
   const nv::JourneyReport& report = *rig::navigator_report(r.travel);
 
@@ -146,6 +172,7 @@ int one_journey(const NavArgs& a, const Setup& s) {
               {"planned",
                {{"D", route.distance},
                 {"U", route.unreliability},
+                {"forecast", route.forecast},
                 {"landmark_distance", route.landmark_distance},
                 {"steps", route.steps.size()}}},
               {"outcome", rig::outcome_name(r.outcome)},
@@ -227,13 +254,26 @@ int trials(const NavArgs& a, const Setup& s) {
   const rig::TrialsSummary t = rig::run_trials(*system, plans, s.world, s.settings.journey, a.threads,
                                                [&](std::int64_t done) { bar.update(done); });
   bar.clear();
-  const auto n = static_cast<std::int64_t>(t.trials.size());
+  // Rates are over the journeys run: a refused plan is not a failure, it is counted apart.
+  const std::int64_t asked = std::ssize(t.trials);
+  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
   const double mean_travel = t.true_travel / static_cast<double>(n);
   const double mean_commanded = t.commanded_travel / static_cast<double>(n);
   const double mean_planned = t.mean_planned_reliability();
   double mean_planned_distance = 0;
-  for (const auto& p : plans) mean_planned_distance += p->planned_distance / static_cast<double>(n);
+  for (const auto& p : plans)
+    if (p->refused.empty()) mean_planned_distance += p->planned_distance / static_cast<double>(n);
+  if (!a.diagram.empty()) {
+    std::vector<ForecastOutcome> forecasts;
+    for (const rig::TrialRecord& r : t.trials)
+      if (!r.refused) forecasts.push_back({r.planned_reliability, rig::reached_goal(r.outcome)});
+    write_reliability_diagram(
+        forecasts,
+        fmt::format("{}: {} journeys, {}, seed {}", std::filesystem::path(a.world).filename().string(), t.run(),
+                    a.sigma_map ? fmt::format("survey sd {} mm", *a.sigma_map) : std::string("rig survey"), a.seed),
+        a.diagram);
+  }
   if (a.json) {
     json outcomes;
     json rates;
@@ -255,17 +295,22 @@ int trials(const NavArgs& a, const Setup& s) {
       journeys.push_back({{"from", r.from},
                           {"to", r.to},
                           {"planned_reliability", r.planned_reliability},
-                          {"outcome", rig::outcome_name(r.outcome)},
+                          {"outcome", r.refused ? "refused" : rig::outcome_name(r.outcome)},
                           {"reason", r.reason},
                           {"first_wrong_entry", r.first_wrong_entry ? json(*r.first_wrong_entry) : json(nullptr)},
                           {"first_wrong_step", r.first_wrong_entry && *r.first_wrong_entry > 0
                                                    ? json(step_name(route.steps.at(*r.first_wrong_entry - 1)))
                                                    : json(nullptr)},
+                          {"steps", steps_json(route)},
                           {"recoveries", r.recoveries},
+                          {"backtracks", r.backtracks},
                           {"frames", r.frames},
                           {"arm_travel", r.true_travel}});
     }
-    const json j = {{"trials", n},
+    const json j = {{"trials", asked},
+                    {"run", t.run()},
+                    {"refused", t.refused},
+                    {"min_reliability", a.min_reliability},
                     {"outcomes", outcomes},
                     {"rates", rates},
                     {"ci95", ci},
@@ -286,6 +331,7 @@ int trials(const NavArgs& a, const Setup& s) {
                     {"sigma_rot", a.sigma_rot},
                     {"window", a.window},
                     {"recovery", !a.no_recovery},
+                    {"navigator", a.navigator},
                     {"seed", a.seed},
                     {"journeys", journeys}};
     std::cout << j.dump() << '\n';
@@ -303,8 +349,12 @@ int trials(const NavArgs& a, const Setup& s) {
   };
   for (const rig::Outcome o : rig::kOutcomes) row(rig::outcome_name(o), t.count(o));
   row("reached the goal", t.reached());
+  if (a.min_reliability > 0) {
+    std::cout << fmt::format("{:<20} {:>7}   of {} asked: routes forecast below R {} were not attempted\n", "refused",
+                             t.refused, asked, a.min_reliability);
+  }
   std::cout << fmt::format(
-      "\nplanned: mean D {:.1f} mm; the map-maker expected {:.2f}% of the journeys to follow their plan (mean R)\n"
+      "\nplanned: mean D {:.1f} mm; the map-maker forecast {:.2f}% of the journeys to reach the goal (mean R)\n"
       "frames {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n",
       mean_planned_distance, 100 * mean_planned, t.frames, t.seconds, fps, mean_travel, mean_commanded);
   return kExitOk;
@@ -318,6 +368,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
+  cmd->add_option("--as-trial", a.as_trial,
+                  "One journey: the arm's and camera's noise of journey I of --trials with the same --seed (to replay "
+                  "a trial exactly: its from/to are in the trials JSON, numbered from 0)");
   add_cost_option(cmd, a.cost);
   cmd->add_option("--sigma-map", a.sigma_map,
                   "Survey by moving each object N(0, S) mm per axis instead of through the global camera and its "
@@ -339,13 +392,26 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
          "Seed of the survey (its images' noise or Gaussian errors), the start/goal draws, arm errors, camera noise")
       ->capture_default_str();
   cmd->add_option("--trials", a.trials, "Run N journeys between random reachable pairs and print the outcome table");
-  cmd->add_flag("--no-recovery", a.no_recovery, "Navigator ignores the map's recovery rules");
+  cmd->add_flag("--no-recovery", a.no_recovery,
+                "Navigator ignores the map's recovery rules and never goes back to try another candidate");
+  cmd->add_option("--min-reliability", a.min_reliability,
+                  "Refuse routes whose forecast reliability is below P, after trying the most reliable route (exit 3; "
+                  "--trials counts refusals apart from failures)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--navigator", a.navigator,
+                  "tracking: the window's heading is dead-reckoned from marbles tracked across moves (an extension); "
+                  "paper: no compass and no such memory, as the paper's navigator")
+      ->check(CLI::IsMember({"tracking", "paper"}))
+      ->capture_default_str();
   cmd->add_option("--window", a.window, "View window side a, mm")->capture_default_str();
   cmd->add_option("--threads", a.threads, "Journeys run in parallel on this many threads (0: all cores)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", a.json, "One JSON object on stdout instead of text");
   cmd->add_option("--plot", a.plot, "One journey: draw the world, planned and executed routes (.png or .svg)");
+  cmd->add_option("--reliability-diagram", a.diagram,
+                  "Trials: draw the forecast against the outcome (bins of planned R, 95% CIs) to this PNG");
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
@@ -356,6 +422,8 @@ int nav_command(const NavArgs& a) {
     throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};
   }
   if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
+  if (a.trials && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to, not --trials"};
+  if (!a.trials && !a.diagram.empty()) throw UsageError{"--reliability-diagram goes with --trials"};
   if (a.trials && (!a.plot.empty() || !a.video.empty())) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }

@@ -26,7 +26,11 @@ struct NavArgs {
   double sigma_rot = 0.002;
   std::uint64_t seed = 1;
   std::optional<std::int64_t> trials;
+  std::optional<std::int64_t> as_trial;
   bool no_recovery = false;
+  std::string navigator = "tracking";  ///< tracking | paper
+  double min_reliability = 0;          ///< refuse routes forecast below this
+  std::string diagram;                 ///< --reliability-diagram PNG
   double window = 50;
   int threads = 0;
   bool json = false;

@@ -58,7 +58,8 @@ void trajectory_check(const Options& o) {
   fmt::print("| sigma mm | trajectories | mean MC R | mean analytic R | mean abs diff | max abs diff | bias |\n");
   fmt::print("|---|---|---|---|---|---|---|\n");
   for (const double sigma : {0.25, 1.0, 4.0}) {
-    const mm::NavigatorErrors errors{sigma};
+    mm::NavigatorErrors errors;
+    errors.sigma = sigma;
     double sum_mc = 0, sum_an = 0, sum_abs = 0, max_abs = 0;
     int count = 0;
     for (int w = 0; w < o.worlds; ++w) {

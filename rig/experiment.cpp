@@ -18,8 +18,12 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
   check("survey sigma", survey_sigma);
   check("arm translation error", c.arm.sigma_move);
   check("arm rotation error", c.arm.sigma_rot);
+  if (!(c.min_reliability >= 0 && c.min_reliability <= 1)) {
+    throw std::invalid_argument(fmt::format("least reliability {}: must be in [0, 1]", c.min_reliability));
+  }
 
   ExperimentSettings s;
+  s.min_reliability = c.min_reliability;
   s.map.window = nav::WindowModel::with_side(c.window);
   // The map-maker rates its steps with the errors the navigator really meets: the survey's position
   // error (as the survey states it, not as the truth would) and the navigator's own placement of its
@@ -35,9 +39,14 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
   s.map.border_tolerance = border_band;
   s.map.errors.translation_per_mm = c.arm.sigma_move;
   s.map.errors.rotation_per_mm = c.arm.sigma_rot * std::numbers::pi / 180;
+  // The map-maker rates its steps with what this navigator recovers from (nothing without recovery).
+  if (c.recovery) s.map.errors.recovery = nav::mapmaker::RecoveryCredit::fitted();
   s.navigator.window = s.map.window;
   s.navigator.view_margin = border_band;
   s.navigator.recovery = c.recovery;
+  s.navigator.track_heading = c.track_heading;
+  // What the navigator expects its arm to turn by error is what the arm is configured to do.
+  s.navigator.turn_sigma_per_mm = s.map.errors.rotation_per_mm;
   s.journey.errors = c.arm;
   s.journey.realism = c.realism;
   s.journey.seed = c.seed;
@@ -47,7 +56,10 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
 std::unique_ptr<ParkKenderSystem> make_park_kender(const Survey& survey, const ExperimentSettings& settings,
                                                    nav::mapmaker::CostCriterion criterion,
                                                    nav::navigator::Observer* observer) {
-  return std::make_unique<ParkKenderSystem>(survey.workspace, settings.map, criterion, settings.navigator, observer);
+  auto system =
+      std::make_unique<ParkKenderSystem>(survey.workspace, settings.map, criterion, settings.navigator, observer);
+  system->refuse_below(settings.min_reliability);
+  return system;
 }
 
 }  // namespace neopipe::rig

@@ -20,6 +20,8 @@ struct ExperimentConfig {
   double window = 50;  ///< view window side a, mm
   ArmErrors arm;
   bool recovery = true;                      ///< the navigator applies the map's recovery rules
+  bool track_heading = true;                 ///< navigator "tracking" (true) or "paper" (false)
+  double min_reliability = 0;                ///< routes forecast below this are refused
   sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera (the survey has its own)
   std::uint64_t seed = 1;                    ///< arm errors and camera noise (journey i: trial_seed(seed, i))
 };
@@ -29,6 +31,7 @@ struct ExperimentConfig {
 inline constexpr double kNavigatorBorderError = 0.25;
 
 struct ExperimentSettings {
+  double min_reliability = 0;
   nav::mapmaker::MapMakerOptions map;
   nav::navigator::NavigatorConfig navigator;
   JourneySettings journey;

@@ -49,8 +49,11 @@ struct Plan {
   std::vector<std::uint32_t> landmarks;
   /// Where the tool starts, from the start object's (true) position, mm, heading 0.
   Eigen::Vector2d start_offset = Eigen::Vector2d::Zero();
-  double planned_reliability = 1;  ///< the planner's forecast that the journey follows its plan
+  double planned_reliability = 1;  ///< the planner's forecast that the journey reaches its goal
   double planned_distance = 0;     ///< mm the planner expects the tool to travel
+  /// Non-empty: the system will not attempt this journey, and why (no route it can describe is as
+  /// reliable as asked). The rig counts such plans as refusals, apart from failures.
+  std::string refused;
 };
 
 /// Told by a system as it travels. The rig reads the truth at the moment of each call.
@@ -72,7 +75,8 @@ class Witness {
 struct Travel {
   Ending ending = Ending::arrived;
   std::string reason;       ///< for an aware failure: what could not be done, in the system's words
-  int recoveries = 0;       ///< error recoveries it applied
+  int recoveries = 0;       ///< error recoveries it applied, of every kind
+  int backtracks = 0;       ///< of which: returns to an earlier landmark to try another choice
   std::int64_t frames = 0;  ///< camera frames it processed
   std::any details;         ///< the system's own report (Park & Kender: nav::navigator::JourneyReport)
 };

@@ -1,5 +1,7 @@
 #include "rig/park_kender.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -64,8 +66,16 @@ std::unique_ptr<Plan> ParkKenderSystem::plan(std::uint32_t from, std::uint32_t t
   auto p = std::make_unique<ParkKenderPlan>();
   try {
     p->route = maker_.plan(from, to, criterion_);
+    if (p->route.forecast < min_reliability_ && criterion_ != mm::CostCriterion::reliability) {
+      p->route = maker_.plan(from, to, mm::CostCriterion::reliability);
+    }
   } catch (const mm::UnreachableGoal& e) {
     throw UnreachableGoal(e.what());
+  }
+  if (const double r = p->route.forecast; r < min_reliability_) {
+    p->refused =
+        fmt::format("route {} -> {}: no route is reliable enough (the most reliable is forecast at {:.3f} < {:.3f})",
+                    from, to, r, min_reliability_);
   }
   const mm::Route& r = p->route;
   p->start = r.start;
@@ -76,7 +86,8 @@ std::unique_ptr<Plan> ParkKenderSystem::plan(std::uint32_t from, std::uint32_t t
   // depend on where the start is.
   const nav::WindowModel& w = navigator_.window;
   p->start_offset = w.origin(Vector2d::Zero(), r.start_corner) + Vector2d(w.side / 2, w.side / 2);
-  p->planned_reliability = std::exp(-r.unreliability);
+  // The forecast that the journey reaches its goal, recoveries included.
+  p->planned_reliability = r.forecast;
   p->planned_distance = r.distance;
   return p;
 }
@@ -90,6 +101,7 @@ Travel ParkKenderSystem::travel(const Plan& plan, Equipment& equipment, Witness&
   t.ending = ending_of(report.ending);
   t.reason = report.reason;
   t.recoveries = report.recoveries;
+  t.backtracks = report.backtracks;
   t.frames = report.frames;
   t.details = std::move(report);
   return t;

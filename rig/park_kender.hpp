@@ -29,19 +29,24 @@ class ParkKenderSystem final : public NavigationSystem {
   [[nodiscard]] std::string name() const override { return "park-kender"; }
   [[nodiscard]] CameraRequest camera() const override;
   /// Throws UnreachableGoal (with the map-maker's words) when no route exists, and
-  /// nav::mapmaker::MapError for unknown ids or a start equal to the goal.
+  /// nav::mapmaker::MapError for unknown ids or a start equal to the goal. A route whose forecast
+  /// is below refuse_below's least reliability is replaced by the most reliable one; when that too
+  /// falls short the plan is marked refused (Plan::refused).
   [[nodiscard]] std::unique_ptr<Plan> plan(std::uint32_t from, std::uint32_t to) const override;
   Travel travel(const Plan& plan, Equipment& equipment, Witness& witness) const override;
 
   [[nodiscard]] const nav::mapmaker::MapMaker& maker() const { return maker_; }
   [[nodiscard]] const nav::navigator::NavigatorConfig& navigator() const { return navigator_; }
   [[nodiscard]] nav::mapmaker::CostCriterion criterion() const { return criterion_; }
+  /// The least forecast reliability of a route the system will attempt (0: any).
+  void refuse_below(double min_reliability) { min_reliability_ = min_reliability; }
 
  private:
   nav::mapmaker::MapMaker maker_;
   nav::mapmaker::CostCriterion criterion_;
   nav::navigator::NavigatorConfig navigator_;
   nav::navigator::Observer* observer_;
+  double min_reliability_ = 0;
 };
 
 /// The route of a plan made by a ParkKenderSystem. Throws std::invalid_argument for another plan.

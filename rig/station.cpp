@@ -34,7 +34,7 @@ class Station::ArmAdapter final : public nav::Arm {
  public:
   ArmAdapter(sim::SimulatedArm& arm, ArmLog& log) : arm_(arm), log_(log) {}
 
-  void move_relative(double dx, double dy, double dtheta) override {
+  bool move_relative(double dx, double dy, double dtheta) override {
     ++log_.moves;
     log_.commanded_travel += std::hypot(dx, dy);
     const sim::Pose2 before = arm_.pose();
@@ -42,11 +42,12 @@ class Station::ArmAdapter final : public nav::Arm {
       arm_.move_relative(dx, dy, dtheta);
     } catch (const sim::ReachError&) {
       ++log_.refused_moves;
-      return;
+      return false;
     }
     const sim::Pose2& after = arm_.pose();
     log_.true_travel += std::hypot(after.x - before.x, after.y - before.y);
     log_.track.emplace_back(after.x, after.y);
+    return true;
   }
 
  private:

@@ -49,8 +49,13 @@ std::int64_t TrialsSummary::reached() const {
 double TrialsSummary::mean_planned_reliability() const {
   if (trials.empty()) return 0;
   double sum = 0;
-  for (const TrialRecord& t : trials) sum += t.planned_reliability;
-  return sum / static_cast<double>(trials.size());
+  std::int64_t run = 0;
+  for (const TrialRecord& t : trials) {
+    if (t.refused) continue;
+    sum += t.planned_reliability;
+    ++run;
+  }
+  return run > 0 ? sum / static_cast<double>(run) : 0;
 }
 
 TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::unique_ptr<Plan>>& plans,
@@ -61,6 +66,13 @@ TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::
   std::atomic<std::int64_t> done{0};
   std::mutex progress_mutex;
   const auto start = std::chrono::steady_clock::now();
+  const auto report_done = [&] {
+    ++done;
+    if (progress) {
+      const std::scoped_lock lock(progress_mutex);
+      progress(done.load());  // read under the lock: the bar never goes backwards
+    }
+  };
   tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
   arena.execute([&] {
     // One journey per task: journeys last thousands of frames, so scheduling costs nothing.
@@ -70,31 +82,38 @@ TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::
             JourneySettings s = settings;
             s.seed = trial_seed(settings.seed, static_cast<std::int64_t>(i));
             const Plan& plan = *plans[i];
-            const JourneyResult r = run_journey(system, plan, world, s);
             TrialRecord& t = summary.trials[i];
             t.from = plan.start;
             t.to = plan.goal;
+            t.planned_reliability = plan.planned_reliability;
+            if (!plan.refused.empty()) {
+              t.refused = true;
+              t.reason = plan.refused;
+              report_done();
+              continue;
+            }
+            const JourneyResult r = run_journey(system, plan, world, s);
             t.outcome = r.outcome;
             t.recoveries = r.travel.recoveries;
+            t.backtracks = r.travel.backtracks;
             t.frames = r.frames;
             t.commanded_travel = r.arm.commanded_travel;
             t.true_travel = r.arm.true_travel;
-            t.planned_reliability = plan.planned_reliability;
             t.reason = r.travel.reason;
             const auto wrong =
                 std::find_if(r.held.begin(), r.held.end(), [](const HeldLandmark& h) { return !h.correct; });
             if (wrong != r.held.end()) t.first_wrong_entry = wrong->entry;
-            ++done;
-            if (progress) {
-              const std::scoped_lock lock(progress_mutex);
-              progress(done.load());  // read under the lock: the bar never goes backwards
-            }
+            report_done();
           }
         });
   });
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Sums in trial order, so the totals do not depend on which thread finished first.
   for (const TrialRecord& t : summary.trials) {
+    if (t.refused) {
+      ++summary.refused;
+      continue;
+    }
     ++summary.counts[static_cast<std::size_t>(t.outcome)];
     summary.frames += t.frames;
     summary.commanded_travel += t.commanded_travel;
@@ -117,8 +136,8 @@ PairedComparison compare_paired(const TrialsSummary& a, const TrialsSummary& b) 
       throw std::invalid_argument(
           fmt::format("paired runs differ at journey {}: {} -> {} against {} -> {}", i, x.from, x.to, y.from, y.to));
     }
-    const bool ra = reached_goal(x.outcome);
-    const bool rb = reached_goal(y.outcome);
+    const bool ra = !x.refused && reached_goal(x.outcome);
+    const bool rb = !y.refused && reached_goal(y.outcome);
     c.a_reached += ra ? 1 : 0;
     c.b_reached += rb ? 1 : 0;
     c.a_only += ra && !rb ? 1 : 0;

@@ -29,18 +29,21 @@ struct TrialRecord {
   std::uint32_t from = 0;
   std::uint32_t to = 0;
   Outcome outcome = Outcome::fail_lost;
-  int recoveries = 0;
+  int recoveries = 0;  ///< of every kind
+  int backtracks = 0;  ///< of which returns to an earlier landmark
   std::int64_t frames = 0;
   double commanded_travel = 0;
   double true_travel = 0;
   double planned_reliability = 1;
-  std::string reason;                            ///< the system's, when it stopped aware of a failure
+  bool refused = false;                          ///< not attempted (Plan::refused): no outcome
+  std::string reason;                            ///< the system's, when it stopped aware of a failure or refused
   std::optional<std::size_t> first_wrong_entry;  ///< the first entry that held a wrong object
 };
 
 struct TrialsSummary {
   std::vector<TrialRecord> trials;       ///< in trial order
-  std::array<std::int64_t, 6> counts{};  ///< by Outcome
+  std::array<std::int64_t, 6> counts{};  ///< by Outcome, over the journeys run
+  std::int64_t refused = 0;              ///< plans the system refused (not run, not in counts)
   std::int64_t frames = 0;
   double seconds = 0;  ///< wall time of the journeys
   double commanded_travel = 0;
@@ -48,7 +51,8 @@ struct TrialsSummary {
 
   [[nodiscard]] std::int64_t count(Outcome o) const { return counts[static_cast<std::size_t>(o)]; }
   [[nodiscard]] std::int64_t reached() const;
-  [[nodiscard]] double mean_planned_reliability() const;
+  [[nodiscard]] double mean_planned_reliability() const;  ///< over the journeys run
+  [[nodiscard]] std::int64_t run() const { return static_cast<std::int64_t>(trials.size()) - refused; }
 };
 
 /// Runs every plan as a journey (in parallel on `threads` threads, 0: all cores), journey i seeded

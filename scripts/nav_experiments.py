@@ -36,12 +36,13 @@ def world(args, objects, seed):
     return path
 
 
-def nav(args, world_path, *extra, trials=None, fresh=False):
+def nav(args, world_path, *extra, trials=None, fresh=False, binary=None):
     """One run's JSON. Runs are kept in the output folder, keyed by the command and the program's
     build, so that tables sharing a run (the paired comparisons) do not run it twice; `fresh` (the
-    throughput) always runs."""
-    cmd = [args.neopipe, "nav", "--world", world_path, "--trials", str(trials or args.trials), "--json", *extra]
-    key = hashlib.sha1((" ".join(cmd) + str(os.path.getmtime(args.neopipe))).encode()).hexdigest()[:16]
+    throughput) always runs. `binary`: another neopipe (a baseline build) instead of --neopipe."""
+    program = binary or args.neopipe
+    cmd = [program, "nav", "--world", world_path, "--trials", str(trials or args.trials), "--json", *extra]
+    key = hashlib.sha1((" ".join(cmd) + str(os.path.getmtime(program))).encode()).hexdigest()[:16]
     cached = os.path.join(args.out, f"run-{key}.json")
     if not fresh and os.path.exists(cached):
         with open(cached) as f:
@@ -177,7 +178,91 @@ def throughput_table(args):
             print(f"| {threads} | {j['seconds']:.2f} | {j['frames']:,} | {j['frames_per_second']:,.0f} |", flush=True)
 
 
-TABLES = {"main": main_table, "seeds": seeds_table, "sensor": sensor_table, "paired": paired_table,
+def bins(j):
+    """The forecast's calibration: per bin of planned R, (journeys, mean R, observed, Wilson 95% CI)."""
+    edges = (0.0, 0.8, 0.9, 0.97, 1.0)
+    out = []
+    run = [x for x in j["journeys"] if x["outcome"] != "refused"]
+    for lo, hi in zip(edges, edges[1:]):
+        sel = [x for x in run if lo <= x["planned_reliability"] < hi or (hi == 1.0 and x["planned_reliability"] == 1.0)]
+        if not sel:
+            continue
+        k, n = sum(reached(x) for x in sel), len(sel)
+        out.append((lo, hi, n, sum(x["planned_reliability"] for x in sel) / n, k / n, wilson(k, n)))
+    return out
+
+
+def wilson(k, n, z=1.959963984540054):
+    if n == 0:
+        return (0.0, 1.0)
+    p = k / n
+    d = 1 + z * z / n
+    c = p + z * z / (2 * n)
+    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return ((c - h) / d, (c + h) / d)
+
+
+SIGMAS = (None, "0.25", "1", "1.5", "5")
+
+
+def survey_label(sigma):
+    return "rig survey" if sigma is None else f"`--sigma-map {sigma}`"
+
+
+def sigma_table(args):
+    """The issue-17 table: reached goal and the forecast's calibration at every survey error, on three
+    sparse worlds and the dense one, with a paired comparison against a baseline build."""
+    print("| world | survey | reached goal | 95% CI | forecast (mean R) | bins in their CI | backtracks | "
+          "baseline | new only / baseline only | McNemar p |")
+    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    cases = [(100, w, sigma) for w in (1, 2, 3) for sigma in SIGMAS] + [(400, 1, "1")]
+    for objects, seed, sigma in cases:
+        w = world(args, objects, seed)
+        extra = ["--sigma-map", sigma] if sigma else []
+        j = nav(args, w, *extra)
+        b = bins(j)
+        inside = sum(lo_ci <= mean <= hi_ci for _, _, _, mean, _, (lo_ci, hi_ci) in b)
+        backtracks = sum(x.get("backtracks", 0) for x in j["journeys"])
+        cells = ["-", "-", "-"]
+        if args.baseline and (seed == 1):
+            base = nav(args, w, *extra, binary=args.baseline)
+            a, bo, p = paired(j, base)
+            cells = [pct(base["reached_goal_rate"]), f"{a} / {bo}", pvalue(p)]
+        print(f"| w{objects}_{seed} | {survey_label(sigma)} | {pct(j['reached_goal_rate'])} | {ci(j)} | "
+              f"{pct(j['mean_planned_reliability'])} | {inside} of {len(b)} | {backtracks} | {' | '.join(cells)} |",
+              flush=True)
+
+
+def calibration_table(args):
+    """Per bin of planned R, pooled over the three sparse worlds: the forecast against the outcome."""
+    print("| survey | R bin | journeys | mean R | reached | 95% CI | in CI |")
+    print("|---|---|---:|---:|---:|---|---|")
+    for sigma in SIGMAS:
+        extra = ["--sigma-map", sigma] if sigma else []
+        pooled = {"journeys": []}
+        for seed in (1, 2, 3):
+            pooled["journeys"] += nav(args, world(args, 100, seed), *extra)["journeys"]
+        for lo, hi, n, mean, obs, (l, h) in bins(pooled):
+            print(f"| {survey_label(sigma)} | [{lo:.2f}, {hi:.2f}) | {n} | {pct(mean)} | {pct(obs)} | "
+                  f"[{100 * l:.1f}, {100 * h:.1f}] | {'yes' if l <= mean <= h else '**no**'} |", flush=True)
+
+
+def navigator_table(args):
+    """The navigator as the paper defines it (no heading memory) against the tracking extension."""
+    print("| survey | tracking | paper | tracking only / paper only | McNemar p |")
+    print("|---|---:|---:|---:|---:|")
+    w = world(args, 100, 1)
+    for sigma in (None, "1", "1.5"):
+        extra = ["--sigma-map", sigma] if sigma else []
+        t = nav(args, w, *extra)
+        p_run = nav(args, w, *extra, "--navigator", "paper")
+        a, b, p = paired(t, p_run)
+        print(f"| {survey_label(sigma)} | {pct(t['reached_goal_rate'])} | {pct(p_run['reached_goal_rate'])} | "
+              f"{a} / {b} | {pvalue(p)} |", flush=True)
+
+
+TABLES = {"sigmas": sigma_table, "calibration": calibration_table, "navigator": navigator_table,
+          "main": main_table, "seeds": seeds_table, "sensor": sensor_table, "paired": paired_table,
           "throughput": throughput_table}
 
 
@@ -186,6 +271,7 @@ def parse():
     p.add_argument("--neopipe", default="build/apps/neopipe")
     p.add_argument("--out", default="build/nav-experiments", help="folder for the worlds")
     p.add_argument("--trials", type=int, default=1000)
+    p.add_argument("--baseline", help="another neopipe build to compare with, journey by journey (sigmas table)")
     p.add_argument("tables", nargs="*", metavar="TABLE", help=f"any of {', '.join(TABLES)} (default: all)")
     args = p.parse_args()
     unknown = [t for t in args.tables if t not in TABLES]

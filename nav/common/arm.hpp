@@ -9,8 +9,9 @@ class Arm {
  public:
   virtual ~Arm() = default;
   /// Moves the tool by (dx, dy) mm in the current tool frame, then turns it by dtheta rad
-  /// (counter-clockwise). A move the arm cannot reach leaves it where it was.
-  virtual void move_relative(double dx, double dy, double dtheta) = 0;
+  /// (counter-clockwise). A move the arm cannot reach leaves it where it was and returns false, as
+  /// a real arm's controller refuses a target beyond its joint limits; true when it moved.
+  virtual bool move_relative(double dx, double dy, double dtheta) = 0;
 
  protected:
   Arm() = default;

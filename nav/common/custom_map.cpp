@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 
 namespace neopipe::nav {
 
@@ -10,6 +11,13 @@ std::optional<int> MapEntry::verified_qoc() const {
     if (!r.corner) return r.qoc;
   }
   return std::nullopt;
+}
+
+bool MapEntry::verify_only_in_doubt() const {
+  for (const RecoveryRule& r : rules) {
+    if (!r.corner) return r.only_in_doubt;
+  }
+  return false;
 }
 
 const RecoveryRule* MapEntry::recovery_for(int qoc) const {
@@ -23,9 +31,14 @@ std::string format_entry(const MapEntry& entry) {
   std::string out = "(";
   out += description_name(entry.seek);
   if (entry.slide) out += std::string(", ") + std::string(trajectory_name(*entry.slide));
+  if (entry.slide && entry.slide_limit) {
+    out += ':';
+    out += std::to_string(std::lround(*entry.slide_limit));
+  }
   for (const RecoveryRule& r : entry.rules) {
     out += ", (" + std::to_string(r.qoc) + ", ";
-    out += r.corner ? std::string(corner_name(*r.corner)) + ", " + std::string(description_name(r.seek)) : "-";
+    out += r.corner ? std::string(corner_name(*r.corner)) + ", " + std::string(description_name(r.seek))
+                    : (r.only_in_doubt ? "?" : "-");
     out += ")";
   }
   out += ", ";
@@ -43,8 +56,8 @@ namespace {
 
 // A recursive-descent reader over the grammar
 //   map   := '(' [entry {',' entry}] ')'
-//   entry := '(' DESC [',' TRAJ] {',' rule} ',' (CORNER | '-') ')'
-//   rule  := '(' INT ',' ((CORNER ',' DESC) | '-') ')'
+//   entry := '(' DESC [',' TRAJ [':' MM]] {',' rule} ',' (CORNER | '-') ')'
+//   rule  := '(' INT ',' ((CORNER ',' DESC) | '-' | '?') ')'
 class Reader {
  public:
   explicit Reader(std::string_view text) : text_(text) {}
@@ -77,9 +90,11 @@ class Reader {
         continue;
       }
       const std::string w = word();
-      if (w == "Trajp" || w == "Trajn") {
+      const std::string kind = w.substr(0, w.find(':'));
+      if (kind == "Trajp" || kind == "Trajn") {
         if (e.slide || !e.rules.empty()) fail("a recovery rule or a corner", w);
-        e.slide = w == "Trajp" ? Direction::positive : Direction::negative;
+        e.slide = kind == "Trajp" ? Direction::positive : Direction::negative;
+        if (kind.size() < w.size()) e.slide_limit = slide_limit(w.substr(kind.size() + 1));
         continue;
       }
       if (w == "-") break;
@@ -102,9 +117,11 @@ class Reader {
     r.qoc = value;
     expect(',');
     const std::string w = word();
-    if (w != "-") {
+    if (w == "?") {
+      r.only_in_doubt = true;
+    } else if (w != "-") {
       const auto c = parse_corner(w);
-      if (!c) fail("a corner (SE, SW, NE, NW) or -", w);
+      if (!c) fail("a corner (SE, SW, NE, NW), - or ?", w);
       r.corner = *c;
       expect(',');
       const std::string desc = word();
@@ -114,6 +131,14 @@ class Reader {
     }
     expect(')');
     return r;
+  }
+
+  double slide_limit(const std::string& text) const {
+    int value = -1;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc{} || end != text.data() + text.size() || value <= 0)
+      fail("a slide bound in whole mm > 0", text);
+    return value;
   }
 
   void skip_space() {

@@ -3,7 +3,8 @@
 // navigator. An entry (D, [T], [E...], M): seek the landmark described by D; optionally slide along
 // the reference->landmark direction (Trajp) or back (Trajn) until a new object enters and take that
 // one; verify it by its QOC and apply the recovery rules E; adjust it to corner M ('-' at the goal).
-// Text form, as in the paper: ((*, SW), (Isol, SE), (Isol, Trajp, (2, NW, Isol), (1, -), -)).
+// Text form, as in the paper: ((*, SW), (Isol, SE), (Isol, Trajp, (2, NW, Isol), (1, -), -)), with
+// two extensions: a slide's bound ("Trajp:120", mm) and a QOC to measure only in doubt ("(1, ?)").
 
 #include <optional>
 #include <stdexcept>
@@ -27,10 +28,13 @@ constexpr std::string_view trajectory_name(Direction d) {
 
 /// (k, corner, D'): when the landmark reached has QOC k, hold it at `corner` and seek D' (which
 /// leads back toward the intended landmark). (k, -): QOC k is the intended landmark's: verified.
+/// (k, ?): QOC k is the intended landmark's, but nothing else could have been taken for it: the
+/// navigator measures it only when the view made it guess (seek.cpp).
 struct RecoveryRule {
   int qoc = 0;
   std::optional<Corner> corner;  ///< none: "verified / arrived"
   Description seek = Description::Isol;
+  bool only_in_doubt = false;  ///< (k, ?): with no corner
   friend bool operator==(const RecoveryRule&, const RecoveryRule&) = default;
 };
 
@@ -39,10 +43,15 @@ struct MapEntry {
   std::optional<Direction> slide;
   std::vector<RecoveryRule> rules;
   std::optional<Corner> adjust;  ///< none ('-'): the goal, stay
+  /// mm: how far the slide may go before the navigator concludes its landmark will not enter
+  /// (written "Trajp:120"): the map-maker's slide plus what its errors allow. None: no bound.
+  std::optional<double> slide_limit;
   friend bool operator==(const MapEntry&, const MapEntry&) = default;
 
   /// The QOC that verifies this entry's landmark, when the map gives one.
   std::optional<int> verified_qoc() const;
+  /// The map gives the QOC only for when the navigator is in doubt: (k, ?).
+  bool verify_only_in_doubt() const;
   /// The rule for a landmark reached with QOC k that is not the verified one.
   const RecoveryRule* recovery_for(int qoc) const;
 };

@@ -93,4 +93,22 @@ std::optional<std::size_t> select_landmark(Description description, const View& 
   return std::nullopt;
 }
 
+std::vector<std::size_t> ranked_landmarks(Description description, const View& view) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < view.points.size(); ++i)
+    if (i != view.reference) order.push_back(i);
+  const Eigen::Vector2d& ref = view.points[view.reference];
+  const auto by_preference = [&](std::size_t p, std::size_t q) {
+    return preferred(ref, view.points[p], view.points[q]);
+  };
+  if (description == Description::Isol && view.points.size() > 2) {
+    const std::vector<int> c = c_values(view);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t p, std::size_t q) { return c[p] != c[q] ? c[p] > c[q] : by_preference(p, q); });
+  } else {
+    std::stable_sort(order.begin(), order.end(), by_preference);
+  }
+  return order;
+}
+
 }  // namespace neopipe::nav

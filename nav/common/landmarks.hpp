@@ -46,4 +46,9 @@ std::optional<std::size_t> isolated_landmark(const View& view);
 /// The landmark `description` selects in `view`; Any takes the preferred object (the farthest).
 std::optional<std::size_t> select_landmark(Description description, const View& view);
 
+/// Every object in view but the reference, in the order `description` prefers them: the first is
+/// select_landmark's choice (Obvious, when there is one, ranks the rest by preference like Any);
+/// the next ones are the navigator's second and third candidates when the first leads nowhere.
+std::vector<std::size_t> ranked_landmarks(Description description, const View& view);
+
 }  // namespace neopipe::nav

@@ -6,6 +6,11 @@
 #include <utility>
 
 namespace neopipe::nav::mapmaker {
+namespace {
+
+constexpr double kSlideSlack = 1.2;
+
+}  // namespace
 
 double Route::ratio() const {
   return distance * std::exp(unreliability);
@@ -47,6 +52,10 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
       step_of_edge.push_back(i);
     }
   }
+  // The compromise D / R rates a route by the travel it costs per success. Identifying a goal in
+  // view travels 0 mm but is not free: it costs a look, counted as a window's travel, so a route
+  // of D = 0 no longer wins whatever its U.
+  graph.set_ratio_offset(views_.window().side);
   std::vector<std::uint32_t> sources;
   for (const Corner c : kCorners) sources.push_back(Placement{start, c}.node());
   const std::uint32_t targets[] = {goal_node};
@@ -66,7 +75,7 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
   route.unreliability = path->unreliability;
   route.landmark_distance = path->landmark_distance;
   route.start_corner = all[step_of_edge[path->edges.front()]].from.corner;
-  route.custom_map.entries.push_back({Description::Any, std::nullopt, {}, route.start_corner});
+  route.custom_map.entries.push_back({Description::Any, std::nullopt, {}, route.start_corner, std::nullopt});
   for (std::size_t k = 0; k < path->edges.size(); ++k) {
     const std::uint32_t e = path->edges[k];
     const bool last = k + 1 == path->edges.size();
@@ -82,8 +91,12 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
       confusable = confusable_in_view(views_, s.from, s.landmark, s.seek);
     }
     rs.check = check_step(views_, s.landmark, confusable, options_.border_tolerance);
-    rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust)};
+    rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust), std::nullopt};
+    // The navigator stops a slide its landmark has not ended by here: a window beyond the slide,
+    // room for what errors move and for the next newcomers when the first proves wrong.
+    if (s.slide) rs.entry.slide_limit = std::ceil(kSlideSlack * s.arrival_travel + views_.window().side);
     route.custom_map.entries.push_back(rs.entry);
+    route.forecast *= rs.step.forecast;
     route.steps.push_back(std::move(rs));
   }
   return route;

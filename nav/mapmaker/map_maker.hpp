@@ -44,7 +44,10 @@ struct Route {
   double distance = 0;           ///< D: window travel, mm
   double unreliability = 0;      ///< U = -log R
   double landmark_distance = 0;  ///< sum of |landmark - reference| over the steps
-  double ratio() const;          ///< D / R
+  /// The forecast that the journey reaches the goal: the product of the steps' forecasts (with
+  /// what the navigator recovers from), where e^-U is the chance it needs no recovery.
+  double forecast = 1;
+  double ratio() const;  ///< D / R
   CustomMap custom_map;
 };
 

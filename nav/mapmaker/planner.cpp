@@ -164,9 +164,15 @@ class CompromiseSearch {
   static constexpr int kMaxDepth = 60;           // hull vertices are few; this only guards rounding
   static constexpr double kRelativeGap = 1e-12;  // a path must lie this far below the segment
 
-  static bool better(const PlannedPath& a, const PlannedPath& b) {
-    return std::make_tuple(a.ratio(), a.distance, a.unreliability) <
-           std::make_tuple(b.ratio(), b.distance, b.unreliability);
+  // (D + offset) e^U: with an offset > 0 a route the navigator travels 0 mm for (its goal in view)
+  // is not free whatever its U (PlanGraph::set_ratio_offset).
+  double cost(double distance, double unreliability) const {
+    return ratio_of(distance + graph_.ratio_offset(), unreliability);
+  }
+  double cost(const PlannedPath& p) const { return cost(p.distance, p.unreliability); }
+  bool better(const PlannedPath& a, const PlannedPath& b) const {
+    return std::make_tuple(cost(a), a.distance, a.unreliability) <
+           std::make_tuple(cost(b), b.distance, b.unreliability);
   }
   void consider(const PlannedPath& p) {
     if (better(p, best_)) best_ = p;
@@ -182,7 +188,7 @@ class CompromiseSearch {
   // Every path between p and q lies in the triangle under the segment pq and above both lines; f is
   // concave, so its least value there is at a corner: p, q (already considered) or where the lines
   // cross.
-  static double floor_between(const Vertex& p, const Vertex& q) {
+  double floor_between(const Vertex& p, const Vertex& q) const {
     const double det = p.line.wd * q.line.wu - p.line.wu * q.line.wd;
     double d = p.path.distance;
     double u = q.path.unreliability;
@@ -190,7 +196,7 @@ class CompromiseSearch {
       d = std::max(d, (p.level() * q.line.wu - p.line.wu * q.level()) / det);
       u = std::max(u, (p.line.wd * q.level() - p.level() * q.line.wd) / det);
     }
-    return ratio_of(d, u);
+    return cost(d, u);
   }
 
   // p: the vertex with less D, q: the one with less U. Segments whose floor is above the best f
@@ -199,7 +205,7 @@ class CompromiseSearch {
     if (depth > kMaxDepth || !(p.path.distance < q.path.distance && q.path.unreliability < p.path.unreliability)) {
       return;
     }
-    if (floor_between(p, q) > best_.ratio() * (1 + kRelativeGap)) return;
+    if (floor_between(p, q) > cost(best_) * (1 + kRelativeGap)) return;
     const Form w{p.path.unreliability - q.path.unreliability, q.path.distance - p.path.distance};
     const auto r = dijkstra(graph_, sources_, is_target_, Order::weighted(w), stats_);
     const Vertex v{*r, w};
@@ -264,6 +270,12 @@ std::uint32_t PlanGraph::add_edge(const PlanEdge& edge) {
   edges_.push_back(edge);
   indexed_ = false;
   return static_cast<std::uint32_t>(index);
+}
+
+void PlanGraph::set_ratio_offset(double offset) {
+  if (!std::isfinite(offset) || offset < 0)
+    throw std::invalid_argument(fmt::format("ratio offset {}: must be a finite number >= 0", offset));
+  ratio_offset_ = offset;
 }
 
 std::span<const std::uint32_t> PlanGraph::out_edges(std::uint32_t node) const {

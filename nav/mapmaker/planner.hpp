@@ -53,12 +53,19 @@ class PlanGraph {
   /// Indices of the edges leaving `node`, in insertion order. Valid after the last add_edge.
   std::span<const std::uint32_t> out_edges(std::uint32_t node) const;
 
+  /// mm added to every path's D in the compromise criterion, which then minimises (D + offset) e^U:
+  /// with 0 (the default, the paper's D / R) a path of D = 0 costs 0 whatever its U. Throws
+  /// std::invalid_argument unless finite and >= 0.
+  void set_ratio_offset(double offset);
+  double ratio_offset() const { return ratio_offset_; }
+
  private:
   void index() const;
   std::vector<PlanEdge> edges_;
   mutable std::vector<std::uint32_t> first_out_;
   mutable std::vector<std::uint32_t> out_;
   mutable bool indexed_ = false;
+  double ratio_offset_ = 0;
 };
 
 struct PlannedPath {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "nav/mapmaker/normal.hpp"
@@ -19,6 +20,9 @@ constexpr double kFittedLogK = 0.478903;
 constexpr double kFittedBeta = 1.075169;
 constexpr double kFittedGamma = 1.011016;
 
+// scripts/fit_recovery_credit.py on `neopipe nav --trials` runs (docs/navigation.md says which).
+constexpr double kRecoveredShare = 0.68;
+
 struct OffsetBound {
   double slide;  ///< where along the slide
   double limit;  ///< the offset across the track that must not be crossed
@@ -31,8 +35,11 @@ struct NormalQuadrature {
   std::vector<double> nodes, weights;
 };
 
-NormalQuadrature normal_quadrature() {
-  constexpr int kNodes = 64;
+// Nodes over e: the soft bounds make its integrand smooth on the scale of its own sd.
+constexpr int kCoarseNodes = 24;
+
+NormalQuadrature normal_quadrature(int nodes = 64) {
+  const int kNodes = nodes;
   constexpr double kSpan = 6.0;
   NormalQuadrature q;
   double total = 0;
@@ -51,7 +58,7 @@ NormalQuadrature normal_quadrature() {
 // the view just outside the leading edges (then it enters first). Along each axis of travel the edge
 // moves by a normal error of sd sigma; these events are taken as independent of the offset above.
 double start_view_agrees(const WorldViews& views, const Trajectory& trajectory, const Eigen::Vector2d& heading,
-                         const Eigen::Vector2d& start, double sigma) {
+                         const Eigen::Vector2d& start, double sigma) {  // NOLINT(bugprone-easily-swappable-parameters)
   if (!(sigma > 0)) return 1.0;
   const double a = views.window().side;
   // Depth of p inside the window behind the leading edge of each axis (negative: ahead of it).
@@ -60,6 +67,7 @@ double start_view_agrees(const WorldViews& views, const Trajectory& trajectory, 
   };
   double agrees = 1.0;
   const Eigen::Vector2d goal = views.position(trajectory.to);
+  sigma *= std::numbers::sqrt2;  // an object's place relative to the reference: both carry the survey's error
   for (int axis = 0; axis < 2; ++axis) {
     if (heading[axis] == 0) continue;
     const double ahead = -depth(goal, axis);  // > 0 on the axis the goal enters by
@@ -82,6 +90,10 @@ double SelectionReliabilityModel::operator()(int visible, double relative_sigma)
   if (visible <= 2 || !(relative_sigma > 0)) return 1.0;
   const double log_odds = log_k + beta * std::log(visible - 2.0) + gamma * std::log(relative_sigma);
   return 1.0 / (1.0 + std::exp(log_odds));
+}
+
+RecoveryCredit RecoveryCredit::fitted() {
+  return {kRecoveredShare};
 }
 
 SelectionReliabilityModel fitted_selection_model() {
@@ -107,7 +119,8 @@ double trajectory_reliability(const WorldViews& views, const Trajectory& traject
   const double sigma_g = std::hypot(sigma / baseline, motion);
   const auto c = [&](double s) { return 1 + towards * s / baseline; };
   const auto sd = [&](double s) { return std::hypot(sigma * c(s), s * sigma_g); };
-  const double widest = std::max(sd(0), sd(trajectory.slide));
+  // With the objects' own errors (below): the widest spread of an object's offset from the track.
+  const double widest = std::hypot(std::max(sd(0), sd(trajectory.slide)), sigma);
   if (!(widest > 0)) return 1.0;
 
   // The band the window sweeps, across the track.
@@ -162,31 +175,28 @@ double trajectory_reliability(const WorldViews& views, const Trajectory& traject
     });
   }
 
-  // For each g (quadrature over its normal law) the bounds leave an interval of e; integrate its probability.
+  // Each bound's object (the goal too) sits where the survey put it only to within its own error,
+  // across the track N(0, sigma^2) and independent of the others': the bound softens into the
+  // probability that the object's own error does not carry it across. R integrates the product
+  // over g and e (two quadratures over their normal laws).
   static const NormalQuadrature rule = normal_quadrature();
+  static const NormalQuadrature coarse = normal_quadrature(kCoarseNodes);
   double reliability = 0;
   for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
     const double g = sigma_g * rule.nodes[k];
-    double e_lo = -std::numeric_limits<double>::infinity(), e_hi = -e_lo;
-    bool possible = true;
-    for (const OffsetBound& b : bounds) {
-      // -e c + s g < limit (below) or > limit: solve for e.
-      const double cs = c(b.slide), rest = b.limit - b.slide * g;
-      if (std::abs(cs) < 1e-12) {
-        possible = possible && (b.below ? rest > 0 : rest < 0);
-        continue;
+    double given_g = 0;
+    for (std::size_t j = 0; j < coarse.nodes.size(); ++j) {
+      const double e = sigma * coarse.nodes[j];
+      double p = coarse.weights[j];
+      for (const OffsetBound& b : bounds) {
+        // Success needs -e c + s g < limit + own (below) or > limit + own, own ~ N(0, sigma^2).
+        const double margin = b.limit - (-e * c(b.slide) + b.slide * g);
+        p *= sigma > 0 ? normal_cdf((b.below ? margin : -margin) / sigma) : ((b.below ? margin : -margin) > 0 ? 1 : 0);
+        if (p < 1e-15) break;
       }
-      const double e = -rest / cs;  // the boundary value of e
-      const bool e_above = (cs > 0) == b.below;
-      if (e_above) {
-        e_lo = std::max(e_lo, e);
-      } else {
-        e_hi = std::min(e_hi, e);
-      }
+      given_g += p;
     }
-    if (!possible || !(e_hi > e_lo)) continue;
-    const double p = sigma > 0 ? normal_cdf(e_hi / sigma) - normal_cdf(e_lo / sigma) : (e_lo < 0 && e_hi > 0 ? 1 : 0);
-    reliability += rule.weights[k] * p;
+    reliability += rule.weights[k] * given_g;
   }
   return std::clamp(reliability * start_view_agrees(views, trajectory, heading, start, sigma), 0.0, 1.0);
 }

@@ -13,6 +13,19 @@
 
 namespace neopipe::nav::mapmaker {
 
+/// The share of a step's mistakes the navigator catches and undoes before they cost the journey:
+/// its map's QOC rules, the next candidate when a later entry leads nowhere, the views its margin
+/// explains (nav/navigator/follow.cpp). A step rated R on its first try is forecast to cost the
+/// journey nothing with 1 - (1 - share) (1 - R). One share for every kind of step: fitted to the
+/// rig's Monte Carlo of the real navigator, per kind the fit did not improve (docs/navigation.md,
+/// "Recovery credit"). 0 for a navigator that does not recover.
+struct RecoveryCredit {
+  double share = 0;
+  /// The published fit (scripts/fit_recovery_credit.py; docs/navigation.md).
+  static RecoveryCredit fitted();
+  double rated(double first_try) const { return 1 - (1 - share) * (1 - first_try); }
+};
+
 /// The navigator's error model as the map-maker sees it.
 struct NavigatorErrors {
   /// Per-axis standard deviation of the positions the navigator measures in its window, mm (the
@@ -22,6 +35,8 @@ struct NavigatorErrors {
   double translation_per_mm = 0.003;
   /// Heading error of a move: sd in rad per mm moved.
   double rotation_per_mm = 0.002 * std::numbers::pi / 180;
+  /// What the navigator recovers from (none by default: each step's first try is its rating).
+  RecoveryCredit recovery;
 };
 
 /// The fitted selection reliability R(n, s) = 1 / (1 + k (n - 2)^beta s^gamma), s = sigma / a:

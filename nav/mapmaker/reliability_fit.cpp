@@ -1,7 +1,6 @@
 #include "nav/mapmaker/reliability_fit.hpp"
 
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -81,12 +80,21 @@ double simulate_trajectory(const WorldViews& views, const Trajectory& trajectory
   const std::uint32_t known[] = {std::min(trajectory.from.object, trajectory.via),
                                  std::max(trajectory.from.object, trajectory.via)};
   int agreed = 0;
+  const std::span<const Eigen::Vector2d> surveyed = views.grid().objects();
+  std::vector<Eigen::Vector2d> truth(surveyed.begin(), surveyed.end());
   for (int i = 0; i < trials; ++i) {
     const Eigen::Vector2d e1(position(rng), position(rng));
     const Eigen::Vector2d e2(position(rng), position(rng));
+    // Every other object is where the survey put it only to within its own error.
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      const bool known_object = k == trajectory.from.object || k == trajectory.via;
+      truth[k] =
+          known_object ? surveyed[k] : Eigen::Vector2d(surveyed[k] + Eigen::Vector2d(position(rng), position(rng)));
+    }
+    const ObjectGrid grid(truth, views.grid().cell());
     const Eigen::Vector2d seen = towards * ((landmark + e2) - (reference + e1));
     const double angle = std::atan2(seen.y(), seen.x()) + turn(rng);
-    const auto hit = first_entering(views.grid(), views.window(), views.origin(trajectory.from) - e1,
+    const auto hit = first_entering(grid, views.window(), views.origin(trajectory.from) - e1,
                                     Eigen::Vector2d(std::cos(angle), std::sin(angle)), reference, known);
     if (hit && hit->object == trajectory.to) ++agreed;
   }

@@ -12,10 +12,10 @@
 namespace neopipe::nav::mapmaker {
 
 struct SelectionSample {
-  int visible = 0;             ///< objects in view, the reference included
-  double relative_sigma = 0;   ///< sigma / a
+  int visible = 0;            ///< objects in view, the reference included
+  double relative_sigma = 0;  ///< sigma / a
   int trials = 0;
-  int agreed = 0;              ///< trials in which the perturbed selection equalled the error-free one
+  int agreed = 0;  ///< trials in which the perturbed selection equalled the error-free one
   double reliability() const { return trials > 0 ? static_cast<double>(agreed) / trials : 0.0; }
 };
 
@@ -38,8 +38,9 @@ SelectionFit fit_selection(std::span<const SelectionSample> samples);
 /// Monte Carlo reliability of one trajectory: the reference measured with error e1 places the window
 /// off by -e1, the direction is that of the measured landmark minus the measured reference, the
 /// motion turns the heading by a normal angle of sd sqrt(t^2 + (r s / 2)^2) at the goal's distance s;
-/// the first object to enter the perturbed slide (exact geometry), not counting the reference and
-/// the direction landmark, which the navigator knows, must be the goal.
+/// every other object lies off its surveyed place by its own error of the same sd; the first object
+/// to enter the perturbed slide (exact geometry), not counting the reference and the direction
+/// landmark, which the navigator knows, must be the goal.
 double simulate_trajectory(const WorldViews& views, const Trajectory& trajectory, const NavigatorErrors& errors,
                            int trials, std::uint64_t seed);
 

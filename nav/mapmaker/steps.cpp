@@ -41,6 +41,7 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
       s.seek = seek;
       s.visible = visible;
       s.reliability = selection;
+      s.forecast = errors.recovery.rated(s.reliability);
       add(s, start);
       for (const Direction dir : {Direction::positive, Direction::negative}) {
         const auto t = trajectory_from(views, from, seek, dir);
@@ -52,6 +53,7 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
         ts.arrival_travel = t->slide;
         ts.reliability =
             selection * trajectory_reliability(views, *t, errors) * entry_order_agreement(views, *t, errors.sigma);
+        ts.forecast = errors.recovery.rated(ts.reliability);
         add(ts, start + t->slide * t->heading(views));
       }
     }

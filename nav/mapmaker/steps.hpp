@@ -26,7 +26,13 @@ struct Step {
   double arrival_travel = 0;             ///< window travel until the landmark is identified (no adjust), mm
   double landmark_distance = 0;          ///< |landmark - reference|, the landmark-based distance
   int visible = 0;                       ///< objects in view at `from`, the reference included
-  double reliability = 1;                ///< R of the step
+  /// R of the step: that the navigator does what the map-maker predicts, first time. The planner
+  /// minimises -log R: it seeks routes that need no recovery.
+  double reliability = 1;
+  /// The chance that the step costs the journey nothing, with what the navigator recovers from
+  /// (RecoveryCredit): the forecast. Not planned on: a planner rewarded for recoverable risk takes
+  /// the risks it cannot recover from (docs/navigation.md, "Recovery credit").
+  double forecast = 1;
 
   double unreliability() const;  ///< -log R
 };

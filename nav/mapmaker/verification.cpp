@@ -90,9 +90,12 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
   check.qoc = views.qoc(landmark);
   check.confusable.assign(confusable.begin(), confusable.end());
   std::sort(check.confusable.begin(), check.confusable.end());
-  if (check.confusable.empty()) return check;  // trivial
   const QocRanges ranges(views, tolerance);
   const QocRange mine = ranges(landmark);
+  if (check.confusable.empty()) {  // trivial: the QOC, for when the navigator's view makes it guess
+    if (mine.low == mine.high) check.rules.push_back({check.qoc, std::nullopt, Description::Isol, true});
+    return check;
+  }
   // Every QOC a mistaken object may show, with the objects that may show it.
   std::map<int, std::vector<std::uint32_t>> by_qoc;
   for (const std::uint32_t id : check.confusable) {

@@ -24,6 +24,10 @@ std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner co
     const double side = pilot.window().side;
     const bool cut = landmark.minCoeff() < radius || landmark.maxCoeff() > side - radius;
     const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.move_and_look(error));
+    if (!pilot.moved()) {
+      return Failure{Ending::lost,
+                     fmt::format("the landmark cannot be held at {}: beyond the arm's reach", corner_name(corner))};
+    }
     const auto i = nearest(seen, target, tracking_gate(error.norm()) + (cut ? radius : 0.0));
     if (!i) {
       return Failure{Ending::lost,

@@ -60,10 +60,19 @@ struct NavigatorConfig {
   int max_adjust_moves = 8;       ///< servo iterations before the adjust counts as failed
   double slide_step = 2;          ///< mm per move while sliding (below a marble radius: slide.cpp)
   double max_slide = 2000;        ///< mm: a trajectory that meets nothing this far is lost
-  bool recovery = true;           ///< apply the map's recovery rules (off: the "no recovery" runs)
+  bool recovery = true;           ///< apply the map's recovery rules and backtrack (off: the "no recovery" runs)
+  /// Candidates an entry may take after the description's choice, and returns to an earlier landmark
+  /// a journey may make, when what follows a choice leads nowhere (follow.cpp).
+  int max_alternatives = 2;
+  int max_backtracks = 6;
   /// What the navigator expects of its arm's unintended turns (sd per move: turn_sigma0 +
   /// turn_sigma_per_mm * length, rad) and of its own positions of whole marbles (sd, mm): it weighs
   /// the turn it measures from objects seen before and after each move by them.
+  /// tracking (the default, an extension of the paper's navigator): the window's heading is
+  /// dead-reckoned over the whole journey from marbles tracked across each move, and every view is
+  /// judged with the window's turn undone. paper: no compass and no such memory, as the paper's
+  /// navigator: views are judged in the window's own axes, whatever the arm turned by error.
+  bool track_heading = true;
   double turn_sigma0 = 0.05 * std::numbers::pi / 180;         // rad
   double turn_sigma_per_mm = 0.002 * std::numbers::pi / 180;  // rad per mm moved
   double position_sigma = 0.015;                              // mm
@@ -87,6 +96,7 @@ struct EntryRecord {
   bool verified = false;            ///< QOC measured and equal to the map's (k, -)
   std::optional<int> measured_qoc;  ///< when it looked around
   int recoveries = 0;               ///< recovery rules applied at this entry
+  int candidate = 0;                ///< which candidate the entry took (0: the description's choice)
   std::int64_t frames = 0;          ///< frames grabbed for this entry
 };
 
@@ -94,7 +104,11 @@ struct JourneyReport {
   Ending ending = Ending::arrived;
   std::string reason;  ///< for lost / unrecoverable: what could not be done, in the map's words
   std::vector<EntryRecord> entries;
-  int recoveries = 0;           ///< total recovery rules applied
+  int recoveries = 0;       ///< total recoveries: QOC rules applied plus backtracks
+  int rule_recoveries = 0;  ///< the map's QOC recovery rules applied
+  /// Returns to the landmark held before an entry to take its next candidate, after what followed
+  /// it led nowhere (follow.cpp). An entry tried twice appears twice in `entries`.
+  int backtracks = 0;
   std::int64_t frames = 0;      ///< onboard frames processed
   double commanded_travel = 0;  ///< mm, sum of |commanded moves|
 };

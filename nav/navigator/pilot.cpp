@@ -16,10 +16,13 @@ const Sighting& Pilot::look() {
 const Sighting& Pilot::move_and_look(const Eigen::Vector2d& d) {
   // The navigator never turns on purpose: it corrects for the turns the arm makes by error in what
   // it concludes from its views (held_view), not by turning back.
-  arm_.move_relative(d.x(), d.y(), 0.0);
+  moved_ = arm_.move_relative(d.x(), d.y(), 0.0);
   report_.commanded_travel += d.norm();
   const std::vector<Eigen::Vector2d> before = sighting_.objects;
   look();
+  if (!moved_) return sighting_;
+  odometry_ += Eigen::Rotation2Dd(heading_) * d;
+  if (!config_.track_heading) return sighting_;
   // The turn since the last look: the rotation that best takes the objects' predicted places to
   // where they are seen (least squares about their centroids; the translation error drops out).
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pairs;

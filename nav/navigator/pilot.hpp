@@ -28,12 +28,20 @@ class Pilot {
   const Sighting& sighting() const { return sighting_; }
   /// Commands a move of the window by `d` (tool frame, no turn) and looks again.
   const Sighting& move_and_look(const Eigen::Vector2d& d);
+  /// False when the arm refused the last move (beyond its reach): it stayed where it was.
+  bool moved() const { return moved_; }
 
   /// The navigator's estimate of how far its window has turned (rad, counter-clockwise) since the
   /// journey began, when the map-maker's axes and the window's were the same. The arm turns a little
   /// by error on every move and the navigator has no compass, but objects seen before and after a
   /// move show the turn: the window's heading is dead-reckoned from them.
   double heading() const { return heading_; }
+
+  /// The sum of the moves made so far (mm), each turned by the heading estimated when it was
+  /// commanded, so in the axes the journey began with. The navigator returns to a landmark it held
+  /// earlier by undoing the moves since (follow.cpp); the arm's errors over those moves, and its
+  /// turns where nothing was in view to measure them, are what the search for it must allow.
+  const Eigen::Vector2d& odometry() const { return odometry_; }
 
  private:
   Eye& eye_;
@@ -43,12 +51,18 @@ class Pilot {
   JourneyReport& report_;
   Sighting sighting_;
   double heading_ = 0;
+  Eigen::Vector2d odometry_ = Eigen::Vector2d::Zero();
+  bool moved_ = true;
 };
 
 /// A failure the navigator is aware of; follow() turns it into the report's ending and reason.
 struct Failure {
   Ending ending = Ending::lost;
   std::string reason;
+  /// The landmark taken is known not to be the one described (its QOC says so): its entry's next
+  /// candidate may be. Otherwise nothing the entry describes was found where the map says, so the
+  /// landmark held before it is in doubt.
+  bool wrong_candidate = false;
 };
 
 /// A landmark held at a corner: where it is seen in the window (within the adjust tolerance of the
@@ -90,13 +104,28 @@ HeldView held_view(const Sighting& sighting, const Hold& hold, const WindowModel
 /// is lost from sight or does not settle.
 std::optional<Failure> adjust(Pilot& pilot, Eigen::Vector2d& landmark, Corner corner);
 
-/// The landmark `description` selects in the view of `hold`, with the map-maker's functions.
-std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark);
+/// A landmark the navigator may take for a description, and whether it is in doubt: the view did
+/// not show what the map-maker saw (an Obvious view with several objects, an object taken from just
+/// outside the window), or it is not the first candidate.
+struct SeekCandidate {
+  Eigen::Vector2d landmark;
+  bool doubtful = false;
+};
+
+/// Everything `description` could select in `view`, best first (seek.cpp says in which order).
+std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description description, double margin);
+
+/// The landmark `description` selects in the view of `hold`, with the map-maker's functions; with
+/// `alternative` k > 0, the k-th next candidate. A Failure when there is no such candidate.
+std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
+                            SeekCandidate& found);
 
 /// Slides the window along the held landmark -> `via` (positive) or back until an object that was
-/// not in view enters; `found` is where that new object is seen. Failure after config.max_slide.
+/// not in view enters; `found` is where that new object is seen. With `alternative` k > 0 it goes on
+/// past the first k newcomers and takes the next. Failure after `limit` (the map's bound), at most
+/// config.max_slide.
 std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             Eigen::Vector2d& found);
+                             std::optional<double> limit, int alternative, Eigen::Vector2d& found);
 
 /// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
 /// occupied quadrants. Returns the hold it ends in (the last corner visited).
@@ -112,6 +141,9 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc);
 /// Verification and recovery of one entry (park-kender.md §7): measures the landmark's QOC and
 /// follows the entry's rules until the QOC is the verified one. `landmark` becomes the object
 /// finally taken; `record` gets the QOC and the recoveries.
-std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record);
+/// `doubtful`: the landmark was a guess (SeekCandidate::doubtful), so an entry whose QOC is to be
+/// measured only in doubt is measured.
+std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, bool doubtful, Eigen::Vector2d& landmark,
+                              EntryRecord& record);
 
 }  // namespace neopipe::nav::navigator::detail

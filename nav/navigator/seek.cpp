@@ -1,9 +1,13 @@
 // Seek (park-kender.md §3): the landmark a description selects in the view of the held landmark,
 // with the map-maker's own selection functions (nav/common/landmarks.hpp), so both choose alike.
+// The view as seen may differ from the map-maker's: its positions have errors, so an object near a
+// border may be on the other side for it. The candidates are therefore ranked, the description's
+// choice first; the navigator takes the next one when the first leads nowhere (follow.cpp).
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <numeric>
 
 #include "nav/common/landmarks.hpp"
 #include "nav/navigator/pilot.hpp"
@@ -12,57 +16,59 @@ namespace neopipe::nav::navigator::detail {
 
 namespace {
 
-// The map says Obvious: the map-maker saw exactly one object besides the reference. When the view
-// as seen has none or several, objects within the view margin of a border may be on the other side
-// for the map-maker: the one object consistent with that, if there is one.
-std::optional<Eigen::Vector2d> obvious_within_margin(const HeldView& view, double margin) {
-  std::vector<std::size_t> clear;
-  for (std::size_t i = 0; i < view.points.size(); ++i) {
-    if (i != view.reference && view.depth[i] > margin) clear.push_back(i);
-  }
-  if (clear.size() == 1) return view.points[clear.front()];
-  if (!clear.empty()) return std::nullopt;
-  // Nothing clearly in view: the marginal object most likely to have been inside.
-  std::optional<Eigen::Vector2d> best;
-  double best_depth = -margin;
-  for (std::size_t i = 0; i < view.points.size(); ++i) {
-    if (i != view.reference && view.depth[i] > best_depth) {
-      best = view.points[i];
-      best_depth = view.depth[i];
-    }
-  }
-  for (std::size_t i = 0; i < view.just_outside.size(); ++i) {
-    if (view.outside_depth[i] > best_depth) {
-      best = view.just_outside[i];
-      best_depth = view.outside_depth[i];
-    }
-  }
-  return best;
+// Indices into `depth` ordered deepest first (the most surely inside the map-maker's window).
+std::vector<std::size_t> deepest_first(const std::vector<double>& depth, std::size_t skip) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < depth.size(); ++i)
+    if (i != skip) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return depth[p] > depth[q]; });
+  return order;
 }
 
 }  // namespace
 
-std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, Eigen::Vector2d& landmark) {
+std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description description, double margin) {
+  std::vector<SeekCandidate> out;
+  const std::size_t others = view.points.size() - 1;
+  if (description == Description::Obvious) {
+    // The map-maker saw exactly one object besides the reference. Seen so, it is certain; with one
+    // clearly inside and others near a border, that one. With several clearly inside, the view is
+    // not the one the map describes whatever the survey's errors: the landmark held is in doubt,
+    // not this entry's choice, and there is no candidate. With none clearly inside, the one most
+    // surely inside is the likeliest: a guess the navigator must confirm.
+    std::size_t clear = 0;
+    for (std::size_t i = 0; i < view.points.size(); ++i) clear += i != view.reference && view.depth[i] > margin;
+    if (clear > 1) return out;
+    const bool sure = others == 1 || clear == 1;
+    for (const std::size_t i : deepest_first(view.depth, view.reference))
+      out.push_back({view.points[i], !(sure && out.empty())});
+  } else {
+    const View v{view.points, view.reference};
+    for (const std::size_t i : ranked_landmarks(description, v)) out.push_back({view.points[i], !out.empty()});
+  }
+  // Nothing (else) in view, but the map-maker saw something: objects just outside, likeliest first.
+  for (const std::size_t i : deepest_first(view.outside_depth, view.outside_depth.size()))
+    out.push_back({view.just_outside[i], true});
+  // The only object anywhere near is no guess: nothing else could be taken for it.
+  if (out.size() == 1) out.front().doubtful = false;
+  return out;
+}
+
+std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
+                            SeekCandidate& found) {
   const double margin = pilot.config().view_margin;
   const HeldView view = held_view(pilot.sighting(), hold, pilot.window(), pilot.heading(), margin);
-  const auto chosen = select_landmark(description, View{view.points, view.reference});
-  if (!chosen && description == Description::Obvious) {
-    if (const auto obvious = obvious_within_margin(view, margin)) {
-      landmark = *obvious;
-      return std::nullopt;
+  const std::vector<SeekCandidate> candidates = seek_candidates(view, description, margin);
+  const auto k = static_cast<std::size_t>(alternative);
+  if (k >= candidates.size()) {
+    if (alternative == 0) {
+      return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",
+                                               description_name(description), view.points.size() - 1)};
     }
+    return Failure{Ending::lost, fmt::format("no candidate #{} for the {} landmark ({} seen)", alternative + 1,
+                                             description_name(description), candidates.size())};
   }
-  if (!chosen && view.points.size() == 1 && !view.just_outside.empty()) {
-    // Nothing in view, but the map-maker saw something: the object just outside most likely to be it.
-    const auto deepest = std::max_element(view.outside_depth.begin(), view.outside_depth.end());
-    landmark = view.just_outside[static_cast<std::size_t>(deepest - view.outside_depth.begin())];
-    return std::nullopt;
-  }
-  if (!chosen) {
-    return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",
-                                             description_name(description), view.points.size() - 1)};
-  }
-  landmark = view.points[*chosen];
+  found = candidates[k];
   return std::nullopt;
 }
 

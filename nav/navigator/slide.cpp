@@ -71,8 +71,9 @@ std::vector<Eigen::Vector2d> newcomers(const std::vector<Eigen::Vector2d>& seen,
 }  // namespace
 
 std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             Eigen::Vector2d& found) {
+                             std::optional<double> limit, int alternative, Eigen::Vector2d& found) {
   const NavigatorConfig& config = pilot.config();
+  const double max_slide = std::min(config.max_slide, limit.value_or(config.max_slide));
   const double side = config.window.side;
   const Eigen::Vector2d line = via - hold.landmark;
   if (line.norm() == 0) return Failure{Ending::lost, "the trajectory's two landmarks coincide"};
@@ -86,6 +87,7 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
   double gate = tracking_gate(0);
   double slid = 0;
   double last_step = 0;
+  int skip = alternative;
   for (;;) {
     // The exact window's coordinates (see held_view): it moves with the real one, axis-aligned.
     const Eigen::Rotation2Dd unturn(pilot.heading());
@@ -108,11 +110,16 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
         goal_entered = when->lo;
       }
     }
-    if (goal) {
+    if (goal && skip == 0) {
       found = *goal;
       return std::nullopt;
     }
-    const double step = std::min(config.slide_step, config.max_slide - slid);
+    if (goal) {  // a newcomer taken before, and found wrong: it is known now, and the slide goes on
+      known.push_back(*goal);
+      --skip;
+      continue;
+    }
+    const double step = std::min(config.slide_step, max_slide - slid);
     if (step <= 0) break;
     // A cap that will enter within the next step: stop just inside its entry, where it is in view.
     std::optional<Eigen::Vector2d> next;
@@ -130,21 +137,29 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     for (Eigen::Vector2d& p : known) p -= d;
     reference -= d;
     pilot.move_and_look(d);
+    if (!pilot.moved()) {
+      return Failure{Ending::lost, fmt::format("the arm cannot go further along the trajectory ({}) after {:.0f} mm",
+                                               trajectory_name(direction), slid)};
+    }
     slid += t;
     last_step = t;
     gate = tracking_gate(t);
     if (next) {
       const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.sighting());
       if (const auto i = nearest(seen, *next - d, gate)) {
-        found = seen[*i];
-        return std::nullopt;
+        if (skip == 0) {
+          found = seen[*i];
+          return std::nullopt;
+        }
+        known.push_back(seen[*i]);
+        --skip;
       }
     }
     std::erase_if(known,
                   [&](const Eigen::Vector2d& p) { return (p.array() < -side).any() || (p.array() > 2 * side).any(); });
   }
   return Failure{Ending::lost, fmt::format("slid {:.0f} mm along the trajectory ({}) without meeting an object",
-                                           config.max_slide, trajectory_name(direction))};
+                                           max_slide, trajectory_name(direction))};
 }
 
 }  // namespace neopipe::nav::navigator::detail

@@ -43,9 +43,15 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc) {
   return std::nullopt;
 }
 
-std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector2d& landmark, EntryRecord& record) {
+std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, bool doubtful, Eigen::Vector2d& landmark,
+                              EntryRecord& record) {
   const std::optional<int> expected = entry.verified_qoc();
   if (!expected) return std::nullopt;  // the map gives no QOC: nothing could be mistaken, or nothing told apart
+  // A step nothing else could be taken for carries its landmark's QOC for when the view was not the
+  // map-maker's and the navigator had to guess.
+  // The goal is measured whenever the map gives its QOC: arriving at the wrong object is the one
+  // mistake no later entry can show.
+  if (entry.verify_only_in_doubt() && !doubtful && entry.adjust) return std::nullopt;
   Hold hold{landmark, Corner::SW};
   for (int hop = 0;; ++hop) {
     Qoc measured;
@@ -65,20 +71,22 @@ std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, Eigen::Vector
     if (rule == nullptr) {
       return Failure{Ending::unrecoverable,
                      fmt::format("the landmark reached has QOC {} where the map expects {}, and {}", qoc, *expected,
-                                 pilot.config().recovery ? "no recovery rule applies" : "recovery is off")};
+                                 pilot.config().recovery ? "no recovery rule applies" : "recovery is off"),
+                     true};
     }
     if (hop >= kMaxRecoveryHops) {
       return Failure{Ending::unrecoverable,
-                     fmt::format("{} recovery rules applied without reaching QOC {}", hop, *expected)};
+                     fmt::format("{} recovery rules applied without reaching QOC {}", hop, *expected), true};
     }
     hold.corner = *rule->corner;
     if (auto failure = adjust(pilot, hold.landmark, hold.corner)) return failure;
-    Eigen::Vector2d next = hold.landmark;
-    if (auto failure = seek(pilot, hold, rule->seek, next)) return failure;
-    hold.landmark = next;
-    landmark = next;
+    SeekCandidate next;
+    if (auto failure = seek(pilot, hold, rule->seek, 0, next)) return failure;
+    hold.landmark = next.landmark;
+    landmark = next.landmark;
     ++record.recoveries;
     ++pilot.report().recoveries;
+    ++pilot.report().rule_recoveries;
   }
 }
 

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 
 #include "cli_test_support.hpp"
 
@@ -41,9 +44,27 @@ class NavCli : public ScratchDirTest {
 TEST_F(NavCli, HelpNamesTheOptions) {
   const auto r = run_neopipe({"nav", "--help"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* option : {"--world", "--from", "--to", "--cost", "--sigma-map", "--sigma-move", "--sigma-rot",
-                             "--seed", "--trials", "--no-recovery", "--window", "--json", "--plot", "--video",
-                             "--realism", "--calibration-cache", "--no-calibration-cache"}) {
+  for (const char* option : {"--world",
+                             "--from",
+                             "--to",
+                             "--cost",
+                             "--sigma-map",
+                             "--sigma-move",
+                             "--sigma-rot",
+                             "--seed",
+                             "--trials",
+                             "--no-recovery",
+                             "--window",
+                             "--json",
+                             "--plot",
+                             "--video",
+                             "--realism",
+                             "--calibration-cache",
+                             "--no-calibration-cache",
+                             "--min-reliability",
+                             "--navigator",
+                             "--as-trial",
+                             "--reliability-diagram"}) {
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
   }
 }
@@ -184,4 +205,67 @@ TEST_F(NavCli, BadInputIsOneLineError) {
   EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("bad.yaml"), "--trials", "2"}), "bad.yaml"));
   EXPECT_TRUE(one_error_line(
       run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--plot", file("p.gif")}), "p.gif"));
+}
+
+// --min-reliability: routes forecast below it are refused. In trials they are counted apart, not as
+// failures; alone, the journey exits 3 with one line. --as-trial replays one journey of the trials
+// exactly, --reliability-diagram draws their forecast against their outcome, --navigator paper runs
+// the paper's navigator.
+TEST_F(NavCli, RefusalsReplaysDiagramsAndThePapersNavigator) {
+  const std::string world = default_world();
+  const auto r = run_neopipe({"nav", "--world", world, "--trials", "20", "--sigma-map", "1.5", "--min-reliability",
+                              "0.95", "--json", "--reliability-diagram", file("d.png")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const int refused = j["refused"].get<int>();
+  EXPECT_GT(refused, 0);
+  EXPECT_LT(refused, 20);
+  EXPECT_EQ(j["run"].get<int>(), 20 - refused);
+  int outcomes = 0;
+  for (const auto& [name, count] : j["outcomes"].items()) outcomes += count.get<int>();
+  EXPECT_EQ(outcomes, 20 - refused);
+  std::optional<json> refused_journey, run_journey;
+  int index = 0, run_index = 0;
+  for (const auto& journey : j["journeys"]) {
+    if (journey["outcome"] == "refused") {
+      EXPECT_LT(journey["planned_reliability"].get<double>(), 0.95);
+      if (!refused_journey) refused_journey = journey;
+    } else if (!run_journey) {
+      run_journey = journey;
+      run_index = index;
+    }
+    ++index;
+  }
+  ASSERT_TRUE(refused_journey && run_journey);
+  EXPECT_TRUE(std::filesystem::file_size(file("d.png")) > 1000);
+
+  const auto alone = run_neopipe({"nav", "--world", world, "--sigma-map", "1.5", "--min-reliability", "0.95", "--from",
+                                  std::to_string((*refused_journey)["from"].get<int>()), "--to",
+                                  std::to_string((*refused_journey)["to"].get<int>())});
+  EXPECT_EQ(alone.exit_code, 3);
+  EXPECT_TRUE(one_error_line(alone, "refused"));
+
+  const auto replay = run_neopipe(
+      {"nav", "--world", world, "--sigma-map", "1.5", "--json", "--as-trial", std::to_string(run_index), "--from",
+       std::to_string((*run_journey)["from"].get<int>()), "--to", std::to_string((*run_journey)["to"].get<int>())});
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  const json one = json::parse(replay.out);
+  EXPECT_EQ(one["outcome"], (*run_journey)["outcome"]);
+  EXPECT_EQ(one["frames"], (*run_journey)["frames"]);
+
+  const auto paper =
+      run_neopipe({"nav", "--world", world, "--trials", "5", "--sigma-map", "0.25", "--navigator", "paper", "--json"});
+  ASSERT_EQ(paper.exit_code, 0) << paper.err;
+  EXPECT_EQ(json::parse(paper.out)["navigator"], "paper");
+
+  EXPECT_TRUE(
+      one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--navigator", "compass"}), "--navigator"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--min-reliability", "1.5"}),
+                             "--min-reliability"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--as-trial", "1"}), "--as-trial"));
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--from", "0", "--to", "1", "--as-trial", "-1"}),
+                             "--as-trial"));
+  EXPECT_TRUE(one_error_line(
+      run_neopipe({"nav", "--world", world, "--from", "0", "--to", "1", "--reliability-diagram", file("x.png")}),
+      "--reliability-diagram"));
 }

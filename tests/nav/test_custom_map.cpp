@@ -45,13 +45,18 @@ TEST(CustomMap, RandomMapsRoundTrip) {
     for (int i = 0; i < n; ++i) {
       MapEntry e;
       e.seek = static_cast<Description>(rng() % 3);
-      if (rng() % 3 == 0) e.slide = rng() % 2 ? Direction::positive : Direction::negative;
+      if (rng() % 3 == 0) {
+        e.slide = rng() % 2 ? Direction::positive : Direction::negative;
+        if (rng() % 2) e.slide_limit = 1 + static_cast<double>(rng() % 500);
+      }
       const int rules = static_cast<int>(rng() % 4);
       for (int r = 0; r < rules; ++r) {
         RecoveryRule rule{static_cast<int>(rng() % 5), std::nullopt, Description::Isol};
         if (rng() % 4) {
           rule.corner = kCorners[rng() % 4];
           rule.seek = static_cast<Description>(rng() % 3);
+        } else {
+          rule.only_in_doubt = rng() % 2 == 0;
         }
         e.rules.push_back(rule);
       }
@@ -60,6 +65,21 @@ TEST(CustomMap, RandomMapsRoundTrip) {
     }
     ASSERT_EQ(parse_custom_map(format_custom_map(m)), m) << format_custom_map(m);
   }
+}
+
+TEST(CustomMap, ReadsASlidesBoundAndAQocToMeasureOnlyInDoubt) {
+  const CustomMap m = parse_custom_map("((*, SW), (Obvious, Trajn:82, (2, ?), SE), (Isol, Trajp, (1, -), -))");
+  ASSERT_EQ(m.entries.size(), 3U);
+  EXPECT_EQ(m.entries[1].slide, Direction::negative);
+  EXPECT_EQ(m.entries[1].slide_limit, 82.0);
+  EXPECT_EQ(m.entries[1].verified_qoc(), 2);
+  EXPECT_TRUE(m.entries[1].verify_only_in_doubt());
+  EXPECT_FALSE(m.entries[2].slide_limit.has_value());
+  EXPECT_FALSE(m.entries[2].verify_only_in_doubt());
+  EXPECT_EQ(format_custom_map(m), "((*, SW), (Obvious, Trajn:82, (2, ?), SE), (Isol, Trajp, (1, -), -))");
+  EXPECT_THROW(parse_custom_map("((Obvious, Trajp:0, SE))"), CustomMapError);
+  EXPECT_THROW(parse_custom_map("((Obvious, Trajp:1.5, SE))"), CustomMapError);
+  EXPECT_THROW(parse_custom_map("((Obvious, Trajp:, SE))"), CustomMapError);
 }
 
 TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
@@ -73,6 +93,8 @@ TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
   };
   EXPECT_EQ(message("((Isol, XX))"),
             "custom map: at character 11: expected a corner (SE, SW, NE, NW) or -, found 'XX'");
+  EXPECT_EQ(message("((Isol, (2, XX), SW))"),
+            "custom map: at character 15: expected a corner (SE, SW, NE, NW), - or ?, found 'XX'");
   EXPECT_EQ(message("((Isle, SW))"),
             "custom map: at character 7: expected a description (Obvious, Isol or *), found 'Isle'");
   EXPECT_EQ(message("((Isol, (7, SW, Isol), SW))"), "custom map: at character 11: expected a QOC 0..4, found '7'");

@@ -136,7 +136,7 @@ TEST(Planner, EachCriterionEqualsBruteForceOverAllSimplePaths) {
 
 // Every Pareto-optimal (D, U) label at every node, by label correcting without any bound; the
 // reference for the compromise search on graphs too large to enumerate.
-double reference_min_ratio(const PlanGraph& g, std::uint32_t source, std::uint32_t target) {
+double reference_min_ratio(const PlanGraph& g, std::uint32_t source, std::uint32_t target, double offset = 0) {
   std::vector<std::vector<std::pair<double, double>>> front(g.node_count());
   std::vector<std::pair<std::uint32_t, std::pair<double, double>>> queue{{source, {0, 0}}};
   front[source].push_back({0, 0});
@@ -157,20 +157,24 @@ double reference_min_ratio(const PlanGraph& g, std::uint32_t source, std::uint32
     }
   }
   double best = kInf;
-  for (const auto& [d, u] : front[target]) best = std::min(best, ratio_of(d, u));
+  for (const auto& [d, u] : front[target]) best = std::min(best, ratio_of(d + offset, u));
   return best;
 }
 
 TEST(Planner, RatioEqualsTheUnprunedParetoFrontOnLargerGraphs) {
-  for (std::uint64_t seed = 100; seed < 106; ++seed) {
-    const PlanGraph g = random_graph(120, 0.04, seed);
-    for (std::uint32_t t = 1; t < 120; t += 7) {
-      const double expected = reference_min_ratio(g, 0, t);
-      const std::uint32_t src[] = {0}, dst[] = {t};
-      const auto path = plan_path(g, src, dst, CostCriterion::ratio);
-      ASSERT_EQ(path.has_value(), expected < kInf) << "seed " << seed << " target " << t;
-      if (path) {
-        EXPECT_NEAR(path->ratio(), expected, 1e-9 * expected) << "seed " << seed << " target " << t;
+  for (const double offset : {0.0, 50.0}) {  // the paper's D / R, and with a look's worth of travel
+    for (std::uint64_t seed = 100; seed < 106; ++seed) {
+      PlanGraph g = random_graph(120, 0.04, seed);
+      g.set_ratio_offset(offset);
+      for (std::uint32_t t = 1; t < 120; t += 7) {
+        const double expected = reference_min_ratio(g, 0, t, offset);
+        const std::uint32_t src[] = {0}, dst[] = {t};
+        const auto path = plan_path(g, src, dst, CostCriterion::ratio);
+        ASSERT_EQ(path.has_value(), expected < kInf) << "seed " << seed << " target " << t;
+        if (path) {
+          const double found = ratio_of(path->distance + offset, path->unreliability);
+          EXPECT_NEAR(found, expected, 1e-9 * expected) << "offset " << offset << " seed " << seed << " target " << t;
+        }
       }
     }
   }
@@ -292,6 +296,29 @@ TEST(Planner, TheCompromiseLiesBetweenTheExtremes) {
   EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{0});
   EXPECT_EQ(plan_path(g, src, dst, CostCriterion::reliability)->edges, (std::vector<std::uint32_t>{1, 2}));
   EXPECT_EQ(plan_path(g, src, dst, CostCriterion::ratio)->edges, (std::vector<std::uint32_t>{3, 4}));
+}
+
+TEST(Planner, WithARatioOffsetAGoalInViewIsNotFreeWhateverItsUnreliability) {
+  // 0 -> 1 with D = 0 (the goal in view) but U = 3 (R 0.05); 0 -> 2 -> 1, 60 mm, certain. D / R
+  // alone takes the first: 0 * e^3 = 0. Counting a look as a window's travel, (0 + 50) e^3 = 1004
+  // against (60 + 50) e^0 = 110: the certain route.
+  PlanGraph g(3);
+  g.add_edge({0, 1, 0, 3.0});
+  g.add_edge({0, 2, 30, 0.0});
+  g.add_edge({2, 1, 30, 0.0});
+  const std::uint32_t src[] = {0}, dst[] = {1};
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::ratio)->edges, std::vector<std::uint32_t>{0});
+  g.set_ratio_offset(50);
+  EXPECT_EQ(plan_path(g, src, dst, CostCriterion::ratio)->edges, (std::vector<std::uint32_t>{1, 2}));
+  // A small U still wins when its route is much shorter: (0 + 50) e^0.5 = 82 < 110.
+  PlanGraph h(3);
+  h.add_edge({0, 1, 0, 0.5});
+  h.add_edge({0, 2, 30, 0.0});
+  h.add_edge({2, 1, 30, 0.0});
+  h.set_ratio_offset(50);
+  EXPECT_EQ(plan_path(h, src, dst, CostCriterion::ratio)->edges, std::vector<std::uint32_t>{0});
+  EXPECT_THROW(h.set_ratio_offset(-1), std::invalid_argument);
+  EXPECT_THROW(h.set_ratio_offset(std::nan("")), std::invalid_argument);
 }
 
 TEST(Planner, RejectsBadEdgesAndNodes) {

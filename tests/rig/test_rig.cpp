@@ -188,14 +188,19 @@ TEST(Rig, ExperimentSettingsComeFromTheSurveyAndTheArm) {
   EXPECT_THROW(rig::derive_settings(c, std::nan("")), std::invalid_argument);
 }
 
-// The path behind `neopipe nav --trials` (survey, settings, system, draws, trials), here on a small
-// default-density world: every journey is judged, most arrive, and the run repeats exactly.
-TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
+// 40 marbles in 250 x 250 mm: the default density on a world small enough for quick trials.
+neopipe::sim::World small_default_density_world() {
   neopipe::sim::WorldRequest q;
   q.objects = 40;
   q.size = {250, 250};
   q.seed = 4;
-  const auto world = neopipe::sim::generate_world(q);
+  return neopipe::sim::generate_world(q);
+}
+
+// The path behind `neopipe nav --trials` (survey, settings, system, draws, trials), here on a small
+// default-density world: every journey is judged, most arrive, and the run repeats exactly.
+TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
+  const auto world = small_default_density_world();
   const rig::Survey survey = rig::gaussian_survey(world, 0.05, 3);
   rig::ExperimentConfig c;
   c.seed = 3;
@@ -210,6 +215,54 @@ TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
   const rig::TrialsSummary again = rig::run_trials(*system, plans, world, settings.journey, 1);
   EXPECT_EQ(again.counts, t.counts);
   EXPECT_EQ(again.frames, t.frames);
+}
+
+// --min-reliability: routes forecast below it are refused, not run, and counted apart; the rest
+// are the very journeys of a run without it (same pairs, same noise).
+TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
+  const auto world = small_default_density_world();
+  const rig::Survey survey = rig::gaussian_survey(world, 1.5, 3);
+  rig::ExperimentConfig c;
+  c.seed = 3;
+  const rig::ExperimentSettings all = rig::derive_settings(c, survey.sigma);
+  const auto free_system = rig::make_park_kender(survey, all, mm::CostCriterion::ratio);
+  const auto free_plans = rig::draw_plans(*free_system, world.objects.size(), 16, c.seed);
+  c.min_reliability = 0.9;
+  const rig::ExperimentSettings strict = rig::derive_settings(c, survey.sigma);
+  const auto strict_system = rig::make_park_kender(survey, strict, mm::CostCriterion::ratio);
+  const auto strict_plans = rig::draw_plans(*strict_system, world.objects.size(), 16, c.seed);
+  ASSERT_EQ(strict_plans.size(), free_plans.size());
+  int refused = 0;
+  for (std::size_t i = 0; i < strict_plans.size(); ++i) {
+    const rig::Plan& p = *strict_plans[i];
+    EXPECT_EQ(p.start, free_plans[i]->start);
+    if (!p.refused.empty()) {
+      ++refused;
+      EXPECT_LT(p.planned_reliability, 0.9);
+      EXPECT_NE(p.refused.find("reliable enough"), std::string::npos) << p.refused;
+    } else {
+      EXPECT_GE(p.planned_reliability, 0.9);  // the criterion's route, or else the most reliable one
+    }
+  }
+  ASSERT_GT(refused, 0) << "the test needs routes below the level";
+  ASSERT_LT(refused, 16);
+  const rig::TrialsSummary t = rig::run_trials(*strict_system, strict_plans, world, strict.journey, 2);
+  EXPECT_EQ(t.refused, refused);
+  EXPECT_EQ(t.run(), 16 - refused);
+  std::int64_t counted = 0;
+  for (const std::int64_t n : t.counts) counted += n;
+  EXPECT_EQ(counted, t.run());  // a refusal is no outcome, not a failure
+  for (const rig::TrialRecord& r : t.trials) {
+    if (r.refused) {
+      EXPECT_EQ(r.frames, 0);
+    }
+  }
+  EXPECT_THROW(
+      {
+        c.min_reliability = 1.5;
+        (void)rig::derive_settings(c, survey.sigma);
+      },
+      std::invalid_argument);
 }
 
 }  // namespace

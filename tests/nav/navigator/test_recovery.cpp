@@ -67,16 +67,54 @@ TEST_F(Recovery, RecoveryAlsoWorksMidJourney) {
   EXPECT_EQ(j.report.recoveries, 1);
 }
 
-TEST_F(Recovery, NoRuleForTheQocMeasuredIsAnAwareFailure) {
-  Rig rig(world_);
+// No rule for QOC 3: the paper's navigator (no second candidate) fails aware; with candidates, the
+// QOC having proved B wrong, it goes back to S and takes the next most isolated object, A.
+TEST_F(Recovery, NoRuleForTheQocMeasuredIsAnAwareFailureOrTheNextCandidate) {
   const CustomMap map = parse_custom_map("((*, SW), (Isol, (2, -), -))");
-  const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
-  EXPECT_EQ(j.report.ending, Ending::unrecoverable);
-  EXPECT_NE(j.report.reason.find("QOC 3"), std::string::npos) << j.report.reason;
-  ASSERT_EQ(j.report.entries.size(), 2u);
-  EXPECT_FALSE(j.report.entries[1].verified);
-  EXPECT_EQ(j.report.entries[1].measured_qoc, 3);
-  EXPECT_EQ(j.report.recoveries, 0);
+  for (const int alternatives : {0, 2}) {
+    Rig rig(world_);
+    rig.config().max_alternatives = alternatives;
+    const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+    EXPECT_EQ(j.report.entries.at(1).measured_qoc, 3);
+    EXPECT_FALSE(j.report.entries.at(1).verified);
+    EXPECT_EQ(j.report.rule_recoveries, 0);
+    if (alternatives == 0) {
+      EXPECT_EQ(j.report.ending, Ending::unrecoverable);
+      EXPECT_NE(j.report.reason.find("QOC 3"), std::string::npos) << j.report.reason;
+      EXPECT_EQ(j.report.entries.size(), 2u);
+      EXPECT_EQ(j.report.recoveries, 0);
+      continue;
+    }
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, A);
+    EXPECT_EQ(j.report.backtracks, 1);
+    ASSERT_EQ(j.report.entries.size(), 3u);  // entry 1 twice
+    EXPECT_EQ(j.report.entries[2].candidate, 1);
+    EXPECT_TRUE(j.report.entries[2].verified);
+  }
+}
+
+TEST_F(Recovery, ADeadEndSendsTheNavigatorBackToThePreviousEntrysNextCandidate) {
+  // A forced `lost`: the map means S -> A -> B, but from S the most isolated object is B, and
+  // nothing is in view of B held at SE. Back at S the navigator takes the next candidate, A, from
+  // which B is the obvious landmark.
+  const mapmaker::WorldViews views(test_rig::workspace_of(world_), WindowModel::with_side(50));
+  ASSERT_TRUE(views.visible({B, Corner::SE}).size() == 1);
+  ASSERT_EQ(views.obvious({A, Corner::SE}), B);
+  const CustomMap map = parse_custom_map("((*, SW), (Isol, SE), (Obvious, -))");
+  for (const bool errors : {false, true}) {
+    RigOptions o;
+    if (!errors) o.errors = sim::MotionErrors::none();
+    Rig rig(world_, o);
+    const test_rig::Journey j = test_rig::travel(rig, map, S, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, B);
+    EXPECT_EQ(j.report.backtracks, 1);
+    EXPECT_EQ(j.report.recoveries, 1);
+  }
+  Rig rig(world_);
+  rig.config().recovery = false;
+  EXPECT_EQ(test_rig::travel(rig, map, S, Corner::SW).report.ending, Ending::lost);
 }
 
 TEST_F(Recovery, WithRecoveryOffTheMistakeIsAnAwareFailure) {

@@ -1,0 +1,79 @@
+// Statistical guards on the navigation system's published rates (docs/navigation-experiments.md),
+// with the power to see a fall that matters. Each runs the same journeys as `neopipe nav --trials N
+// --sigma-map S --seed 1` on the default sparse world, and asks that the 95% lower bound of the
+// share reaching the goal stay above the published level less 2 points. The journeys are enough
+// that the bound lies 1.0 (98%, 1,000 journeys) and 1.3 points (90%, 2,000) under the rate: a
+// harmless change keeps it with room for its noise, and a 2-point fall fails (the bound then lies
+// 3 points under the level). The forecast is checked on the same journeys: its mean within 2 points
+// of the rate. Its bins of planned R are printed, not asserted: they do not all hold yet (issue 17).
+// Deterministic: the same seeds give the same journeys, so these tests never flake.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <iostream>
+
+#include "rig/experiment.hpp"
+#include "rig/outcome.hpp"
+#include "rig/survey.hpp"
+#include "rig/trials.hpp"
+#include "sim/world.hpp"
+
+namespace {
+namespace rig = neopipe::rig;
+namespace sim = neopipe::sim;
+namespace mm = neopipe::nav::mapmaker;
+
+rig::TrialsSummary trials_at(double survey_sigma, std::int64_t journeys) {
+  sim::WorldRequest q;
+  q.objects = 100;
+  q.seed = 1;
+  const sim::World world = sim::generate_world(q);
+  const rig::Survey survey = rig::gaussian_survey(world, survey_sigma, 1);
+  rig::ExperimentConfig c;
+  c.seed = 1;
+  const rig::ExperimentSettings settings = rig::derive_settings(c, survey.sigma);
+  const auto system = rig::make_park_kender(survey, settings, mm::CostCriterion::reliability);
+  const auto plans = rig::draw_plans(*system, world.objects.size(), journeys, c.seed);
+  return rig::run_trials(*system, plans, world, settings.journey, 0);
+}
+
+void expect_level_and_calibrated_forecast(const rig::TrialsSummary& t, double level) {
+  ASSERT_EQ(t.refused, 0);
+  const double rate = static_cast<double>(t.reached()) / static_cast<double>(t.run());
+  const rig::Interval ci = rig::wilson_interval(t.reached(), t.run());
+  std::cout << "reached " << t.reached() << " of " << t.run() << " [" << ci.low << ", " << ci.high << "], forecast "
+            << t.mean_planned_reliability() << "\n";
+  EXPECT_GE(ci.low, level - 0.02) << "the rate fell: " << rate << " against the published " << level;
+  EXPECT_LE(std::abs(t.mean_planned_reliability() - rate), 0.02) << "the forecast is off";
+  constexpr std::array kEdges{0.0, 0.8, 0.9, 0.97, 1.0000001};
+  for (std::size_t b = 0; b + 1 < kEdges.size(); ++b) {
+    std::int64_t n = 0, reached = 0;
+    double forecast = 0;
+    for (const rig::TrialRecord& r : t.trials) {
+      if (r.planned_reliability < kEdges[b] || r.planned_reliability >= kEdges[b + 1]) continue;
+      ++n;
+      reached += rig::reached_goal(r.outcome) ? 1 : 0;
+      forecast += r.planned_reliability;
+    }
+    if (n == 0) continue;
+    const rig::Interval w = rig::wilson_interval(reached, n);
+    forecast /= static_cast<double>(n);
+    std::cout << "  R in [" << kEdges[b] << ", " << kEdges[b + 1] << "): " << n << " journeys, forecast " << forecast
+              << ", reached " << static_cast<double>(reached) / static_cast<double>(n) << " [" << w.low << ", "
+              << w.high << "]" << (forecast < w.low || forecast > w.high ? " outside" : "") << "\n";
+  }
+}
+
+// Published: 98.4% of 1,000 (docs/navigation-experiments.md, issue 17); the level 98%.
+TEST(NavigationRates, SparseWorldWithAOneMillimetreSurvey) {
+  expect_level_and_calibrated_forecast(trials_at(1.0, 1000), 0.98);
+}
+
+// Published: 91.5% of 1,000, the paper's survey error; the level 90%, over 2,000 journeys.
+TEST(NavigationRates, SparseWorldWithAOneAndAHalfMillimetreSurvey) {
+  expect_level_and_calibrated_forecast(trials_at(1.5, 2000), 0.90);
+}
+
+}  // namespace
