@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <numeric>
 
 #include "nav/common/landmarks.hpp"
 #include "nav/navigator/pilot.hpp"

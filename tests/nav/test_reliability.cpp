@@ -155,3 +155,40 @@ TEST(Reliability, TwoMarblesEnteringByTheSameEdgeAlmostTogetherAreACoinToss) {
 
 }  // namespace
 }  // namespace neopipe::nav::mapmaker
+
+namespace neopipe::nav::mapmaker {
+namespace {
+
+// Issue 17: every object lies off its surveyed place by its own error, and the model must price
+// one that lies just outside the swept band: with it the analytic R agrees with a Monte Carlo that
+// moves every object (the model that moved the reference and the direction landmark only rated an
+// object 3 mm outside as far less likely to enter).
+TEST(Reliability, AnObjectJustOutsideTheSweptBandIsPricedByItsOwnError) {
+  const auto check = [](double distractor_y) {
+    // Reference at (100, 100) held at SW, the direction landmark due East in view: the window slides
+    // East over y in [97.5, 147.5]; the goal lies ahead inside, the distractor beside the band.
+    const Workspace w{{400, 300}, {{100, 100}, {140, 100}, {260, 120}, {200, distractor_y}}};
+    const WorldViews views(w, WindowModel::with_side(50));
+    const auto t = trajectory_from(views, {0, Corner::SW}, Description::Obvious, Direction::positive);
+    EXPECT_TRUE(t.has_value());
+    if (!t) return -1.0;
+    EXPECT_EQ(t->to, 2U);
+    NavigatorErrors errors;
+    errors.translation_per_mm = 0;
+    errors.rotation_per_mm = 0;
+    errors.sigma = 0;
+    EXPECT_EQ(trajectory_reliability(views, *t, errors), 1.0);
+    errors.sigma = 1.5;
+    const double analytic = trajectory_reliability(views, *t, errors);
+    const double simulated = simulate_trajectory(views, *t, errors, 20000, 7);
+    EXPECT_NEAR(analytic, simulated, 0.03) << "distractor at y " << distractor_y;
+    return analytic;
+  };
+  const double near = check(150.5);  // 3 mm outside the band
+  const double far = check(165.5);   // 18 mm outside
+  EXPECT_LT(near, 0.8);
+  EXPECT_GT(far, 0.98);
+}
+
+}  // namespace
+}  // namespace neopipe::nav::mapmaker

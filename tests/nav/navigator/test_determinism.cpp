@@ -124,10 +124,10 @@ TEST(Throughput, DefaultSparseWorld) {
       journeys, frames, seconds, rate);
   RecordProperty("frames_per_second", static_cast<int>(rate));
   EXPECT_GE(journeys, 40);
-  // Measured 38 of 45 (84%): the misses are mostly heading drift (the arm turns by error and the
-  // navigator has no compass) and views that hinge on an object within a fraction of a millimetre
-  // of a border. The issue asks 99%.
-  EXPECT_GE(at_goal, journeys * 3 / 4);
+  // Measured 44 of 45 (issue 17). The goal rate is guarded with statistical power by
+  // tests/rig/test_navigation_rates.cpp (1,000 and more journeys); here 45 journeys only say that
+  // nothing broke: more than two misses is a fall no noise explains.
+  EXPECT_GE(at_goal, journeys - 2);
   // The target is 1,000 frames/s; the bound is lower so a loaded machine does not fail the suite.
   EXPECT_GT(rate, 300);
 }

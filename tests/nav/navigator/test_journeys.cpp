@@ -135,9 +135,10 @@ TEST(Journeys, RandomRoutesReachTheGoal) {
         "motion errors {}: {} of {} journeys at the goal ({} arrived), {} frames, {:.0f} frames/s\n", errors, t.at_goal,
         t.journeys, t.arrived, t.frames, t.frames / t.seconds);
     EXPECT_GE(t.journeys, 30);
-    // The misses left are steps the map-maker plans on an object within a tenth of a millimetre of a
-    // window border (no camera decides those): see the report of issue 7.
-    EXPECT_GE(t.at_goal, t.journeys * 85 / 100);
+    // Measured 39 of 40 with and without motion errors (issue 17). The goal rate is guarded with
+    // statistical power by tests/rig/test_navigation_rates.cpp; 40 journeys only say that nothing
+    // broke: more than two misses is a fall no noise explains.
+    EXPECT_GE(t.at_goal, t.journeys - 2);
   }
 }
 
