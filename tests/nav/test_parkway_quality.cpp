@@ -69,7 +69,8 @@ TEST(ParkwayQuality, SubgraphsMatchTheirDefinitionsByBruteForce) {
     const Workspace w = uniform_world(n, 300, 11 + n);
     const WindowModel window = WindowModel::with_side(50);
     const WorldViews views(w, window);
-    const NavigatorErrors errors{.sigma = 2.0};
+    NavigatorErrors errors;
+    errors.sigma = 2.0;
     const double threshold = 0.9;
     const auto edges = parkway_edge_qualities(views, errors);
     const QualifiedParkways q = qualify_parkways(edges, threshold);
