@@ -261,6 +261,13 @@ int trials(const NavArgs& a, const Setup& s) {
   const double mean_travel = t.true_travel / static_cast<double>(n);
   const double mean_commanded = t.commanded_travel / static_cast<double>(n);
   const double mean_planned = t.mean_planned_reliability();
+  // Recoveries by kind: the map's QOC rules, and returns to an earlier landmark for another choice.
+  std::int64_t backtracks = 0;
+  std::int64_t rule_recoveries = 0;
+  for (const rig::TrialRecord& r : t.trials) {
+    backtracks += r.backtracks;
+    rule_recoveries += r.recoveries - r.backtracks;
+  }
   double mean_planned_distance = 0;
   for (const auto& p : plans)
     if (p->refused.empty()) mean_planned_distance += p->planned_distance / static_cast<double>(n);
@@ -327,6 +334,7 @@ int trials(const NavArgs& a, const Setup& s) {
                     {"sigma_map", s.survey.sigma},
                     {"mean_planned_reliability", mean_planned},
                     {"mean_planned_distance", mean_planned_distance},
+                    {"recoveries", {{"qoc_rules", rule_recoveries}, {"backtracks", backtracks}}},
                     {"sigma_move", a.sigma_move},
                     {"sigma_rot", a.sigma_rot},
                     {"window", a.window},
@@ -355,8 +363,10 @@ int trials(const NavArgs& a, const Setup& s) {
   }
   std::cout << fmt::format(
       "\nplanned: mean D {:.1f} mm; the map-maker forecast {:.2f}% of the journeys to reach the goal (mean R)\n"
+      "recoveries: {} by the map's QOC rules, {} returns to an earlier landmark for another choice\n"
       "frames {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n",
-      mean_planned_distance, 100 * mean_planned, t.frames, t.seconds, fps, mean_travel, mean_commanded);
+      mean_planned_distance, 100 * mean_planned, rule_recoveries, backtracks, t.frames, t.seconds, fps, mean_travel,
+      mean_commanded);
   return kExitOk;
 }
 

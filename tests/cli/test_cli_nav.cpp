@@ -221,6 +221,10 @@ TEST_F(NavCli, RefusalsReplaysDiagramsAndThePapersNavigator) {
   EXPECT_GT(refused, 0);
   EXPECT_LT(refused, 20);
   EXPECT_EQ(j["run"].get<int>(), 20 - refused);
+  int backtracks = 0;
+  for (const auto& journey : j["journeys"]) backtracks += journey["backtracks"].get<int>();
+  EXPECT_EQ(j["recoveries"]["backtracks"].get<int>(), backtracks);
+  EXPECT_GE(j["recoveries"]["qoc_rules"].get<int>(), 0);
   int outcomes = 0;
   for (const auto& [name, count] : j["outcomes"].items()) outcomes += count.get<int>();
   EXPECT_EQ(outcomes, 20 - refused);
