@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "rig/experiment.hpp"
 #include "rig/journey.hpp"
@@ -197,22 +198,38 @@ neopipe::sim::World small_default_density_world() {
   return neopipe::sim::generate_world(q);
 }
 
+// What `neopipe nav --trials N --seed 3` sets up on that world with a Gaussian survey.
+struct SmallTrials {
+  neopipe::sim::World world = small_default_density_world();
+  rig::Survey survey;
+  rig::ExperimentSettings settings;
+  std::unique_ptr<rig::ParkKenderSystem> system;
+  std::vector<std::unique_ptr<rig::Plan>> plans;
+
+  SmallTrials(double survey_sigma, mm::CostCriterion criterion, std::int64_t count, double min_reliability = 0)
+      : survey(rig::gaussian_survey(world, survey_sigma, 3)) {
+    rig::ExperimentConfig c;
+    c.seed = 3;
+    c.min_reliability = min_reliability;
+    settings = rig::derive_settings(c, survey.sigma);
+    system = rig::make_park_kender(survey, settings, criterion);
+    plans = rig::draw_plans(*system, world.objects.size(), count, c.seed);
+  }
+  rig::TrialsSummary run(int threads) const {
+    return rig::run_trials(*system, plans, world, settings.journey, threads);
+  }
+};
+
 // The path behind `neopipe nav --trials` (survey, settings, system, draws, trials), here on a small
 // default-density world: every journey is judged, most arrive, and the run repeats exactly.
 TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
-  const auto world = small_default_density_world();
-  const rig::Survey survey = rig::gaussian_survey(world, 0.05, 3);
-  rig::ExperimentConfig c;
-  c.seed = 3;
-  const rig::ExperimentSettings settings = rig::derive_settings(c, survey.sigma);
-  const auto system = rig::make_park_kender(survey, settings, mm::CostCriterion::reliability);
-  const auto plans = rig::draw_plans(*system, world.objects.size(), 12, c.seed);
-  const rig::TrialsSummary t = rig::run_trials(*system, plans, world, settings.journey, 2);
+  const SmallTrials small(0.05, mm::CostCriterion::reliability, 12);
+  const rig::TrialsSummary t = small.run(2);
   ASSERT_EQ(t.trials.size(), 12U);
   EXPECT_GE(t.reached(), 10);
   EXPECT_GT(t.mean_planned_reliability(), 0.5);
   EXPECT_GT(t.frames, 12 * 5);
-  const rig::TrialsSummary again = rig::run_trials(*system, plans, world, settings.journey, 1);
+  const rig::TrialsSummary again = small.run(1);
   EXPECT_EQ(again.counts, t.counts);
   EXPECT_EQ(again.frames, t.frames);
 }
@@ -220,17 +237,10 @@ TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
 // --min-reliability: routes forecast below it are refused, not run, and counted apart; the rest
 // are the very journeys of a run without it (same pairs, same noise).
 TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
-  const auto world = small_default_density_world();
-  const rig::Survey survey = rig::gaussian_survey(world, 1.5, 3);
-  rig::ExperimentConfig c;
-  c.seed = 3;
-  const rig::ExperimentSettings all = rig::derive_settings(c, survey.sigma);
-  const auto free_system = rig::make_park_kender(survey, all, mm::CostCriterion::ratio);
-  const auto free_plans = rig::draw_plans(*free_system, world.objects.size(), 16, c.seed);
-  c.min_reliability = 0.9;
-  const rig::ExperimentSettings strict = rig::derive_settings(c, survey.sigma);
-  const auto strict_system = rig::make_park_kender(survey, strict, mm::CostCriterion::ratio);
-  const auto strict_plans = rig::draw_plans(*strict_system, world.objects.size(), 16, c.seed);
+  const SmallTrials free(1.5, mm::CostCriterion::ratio, 16);
+  const SmallTrials strict(1.5, mm::CostCriterion::ratio, 16, 0.9);
+  const auto& free_plans = free.plans;
+  const auto& strict_plans = strict.plans;
   ASSERT_EQ(strict_plans.size(), free_plans.size());
   int refused = 0;
   for (std::size_t i = 0; i < strict_plans.size(); ++i) {
@@ -246,7 +256,7 @@ TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
   }
   ASSERT_GT(refused, 0) << "the test needs routes below the level";
   ASSERT_LT(refused, 16);
-  const rig::TrialsSummary t = rig::run_trials(*strict_system, strict_plans, world, strict.journey, 2);
+  const rig::TrialsSummary t = strict.run(2);
   EXPECT_EQ(t.refused, refused);
   EXPECT_EQ(t.run(), 16 - refused);
   std::int64_t counted = 0;
@@ -257,12 +267,9 @@ TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
       EXPECT_EQ(r.frames, 0);
     }
   }
-  EXPECT_THROW(
-      {
-        c.min_reliability = 1.5;
-        (void)rig::derive_settings(c, survey.sigma);
-      },
-      std::invalid_argument);
+  rig::ExperimentConfig c;
+  c.min_reliability = 1.5;
+  EXPECT_THROW((void)rig::derive_settings(c, 1.5), std::invalid_argument);
 }
 
 }  // namespace
