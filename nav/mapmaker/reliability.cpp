@@ -39,12 +39,11 @@ struct NormalQuadrature {
 constexpr int kCoarseNodes = 24;
 
 NormalQuadrature normal_quadrature(int nodes = 64) {
-  const int kNodes = nodes;
   constexpr double kSpan = 6.0;
   NormalQuadrature q;
   double total = 0;
-  for (int k = 0; k < kNodes; ++k) {
-    const double x = -kSpan + (k + 0.5) * 2 * kSpan / kNodes;
+  for (int k = 0; k < nodes; ++k) {
+    const double x = -kSpan + (k + 0.5) * 2 * kSpan / nodes;
     q.nodes.push_back(x);
     q.weights.push_back(std::exp(-x * x / 2));
     total += q.weights.back();

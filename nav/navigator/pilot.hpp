@@ -112,9 +112,6 @@ struct SeekCandidate {
   bool doubtful = false;
 };
 
-/// Everything `description` could select in `view`, best first (seek.cpp says in which order).
-std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description description, double margin);
-
 /// The landmark `description` selects in the view of `hold`, with the map-maker's functions; with
 /// `alternative` k > 0, the k-th next candidate. A Failure when there is no such candidate.
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,

@@ -24,8 +24,7 @@ std::vector<std::size_t> deepest_first(const std::vector<double>& depth, std::si
   return order;
 }
 
-}  // namespace
-
+// Everything `description` could select in `view`, best first.
 std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description description, double margin) {
   std::vector<SeekCandidate> out;
   const std::size_t others = view.points.size() - 1;
@@ -52,6 +51,8 @@ std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description des
   if (out.size() == 1) out.front().doubtful = false;
   return out;
 }
+
+}  // namespace
 
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
                             SeekCandidate& found) {

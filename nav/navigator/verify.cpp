@@ -62,12 +62,11 @@ std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, bool doubtful
     // Objects within the view margin of a border may lie on the other side for the map-maker: a QOC
     // it could have computed for this landmark verifies it, unless a rule names the QOC seen.
     const bool explained = measured.low <= *expected && *expected <= measured.high;
-    const RecoveryRule* seen_rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
-    if (qoc == *expected || (explained && seen_rule == nullptr)) {
+    const RecoveryRule* rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
+    if (qoc == *expected || (explained && rule == nullptr)) {
       record.verified = true;
       return std::nullopt;
     }
-    const RecoveryRule* rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
     if (rule == nullptr) {
       return Failure{Ending::unrecoverable,
                      fmt::format("the landmark reached has QOC {} where the map expects {}, and {}", qoc, *expected,
