@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -82,6 +83,21 @@ Setup make_setup(const NavArgs& a) {
   config.realism = realism;
   s.settings = rig::derive_settings(config, s.survey.sigma);
   return s;
+}
+
+// The surveyed position of every object beside its true one: what the map-maker believed, for
+// replaying its choices (`neopipe map`) or finding the survey error behind a failed step.
+void write_survey_csv(const std::string& path, const Setup& s) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(fmt::format("--survey-csv {}: cannot open for writing", path));
+  out << "id,x,y,true_x,true_y,error\n";
+  const auto& surveyed = s.survey.workspace.objects;
+  for (std::size_t i = 0; i < surveyed.size(); ++i) {
+    const Eigen::Vector2d& t = s.world.objects[i];
+    out << fmt::format("{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f}\n", i, surveyed[i].x(), surveyed[i].y(), t.x(), t.y(),
+                       (surveyed[i] - t).norm());
+  }
+  if (!out.flush()) throw std::runtime_error(fmt::format("--survey-csv {}: write failed", path));
 }
 
 json survey_json(const rig::Survey& s) {
@@ -422,6 +438,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--plot", a.plot, "One journey: draw the world, planned and executed routes (.png or .svg)");
   cmd->add_option("--reliability-diagram", a.diagram,
                   "Trials: draw the forecast against the outcome (bins of planned R, 95% CIs) to this PNG");
+  cmd->add_option("--survey-csv", a.survey_csv,
+                  "Write every object's surveyed position (what the map-maker believes) beside the true one: CSV "
+                  "id,x,y,true_x,true_y,error");
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
@@ -438,6 +457,7 @@ int nav_command(const NavArgs& a) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }
   const Setup s = make_setup(a);
+  if (!a.survey_csv.empty()) write_survey_csv(a.survey_csv, s);
   return a.trials ? trials(a, s) : one_journey(a, s);
 }
 

@@ -31,6 +31,7 @@ struct NavArgs {
   std::string navigator = "tracking";  ///< tracking | paper
   double min_reliability = 0;          ///< refuse routes forecast below this
   std::string diagram;                 ///< --reliability-diagram PNG
+  std::string survey_csv;              ///< --survey-csv: what the map-maker believes, beside the truth
   double window = 50;
   int threads = 0;
   bool json = false;

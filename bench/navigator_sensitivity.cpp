@@ -44,6 +44,8 @@ std::vector<Constant> constants(const nv::NavigatorConfig& c) {
       {"view margin", [](nv::NavigatorConfig& n, double k) { n.view_margin *= k; },
        fmt::format("{:.2f} mm", c.view_margin)},
       {"slide step", [](nv::NavigatorConfig& n, double k) { n.slide_step *= k; }, fmt::format("{} mm", c.slide_step)},
+      {"slide offset", [](nv::NavigatorConfig& n, double k) { n.slide_offset *= k; },
+       fmt::format("{:.1f} mm", c.slide_offset)},
       {"candidates per entry",
        [](nv::NavigatorConfig& n, double k) { n.max_alternatives = static_cast<int>(n.max_alternatives * k); },
        fmt::format("{}", c.max_alternatives)},

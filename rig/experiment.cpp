@@ -43,6 +43,8 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
   if (c.recovery) s.map.errors.recovery = nav::mapmaker::RecoveryCredit::fitted();
   s.navigator.window = s.map.window;
   s.navigator.view_margin = border_band;
+  // A slide that led nowhere is tried again beside its track, as far as the survey's errors move it.
+  s.navigator.slide_offset = kSlideOffsetPerSigma * survey_sigma;
   s.navigator.recovery = c.recovery;
   s.navigator.track_heading = c.track_heading;
   // What the navigator expects its arm to turn by error is what the arm is configured to do.

@@ -6,7 +6,8 @@ their JSON (standard library only). Usage:
 
     scripts/nav_experiments.py [--neopipe build/apps/neopipe] [--out DIR] [--trials 1000] [TABLE ...]
 
-TABLE is any of: main, seeds, sensor, paired, throughput (default: all). Runs are kept in DIR as
+TABLE is any of: sigmas, surveys, calibration, navigator, main, seeds, sensor, paired, throughput
+(default: all). Runs are kept in DIR as
 JSON and reused while the program is the same build. Worlds are made in DIR with
 `neopipe sim world`, as the document's commands do. Every command is echoed on stderr.
 """
@@ -261,7 +262,65 @@ def navigator_table(args):
               f"{a} / {b} | {pvalue(p)} |", flush=True)
 
 
-TABLES = {"sigmas": sigma_table, "calibration": calibration_table, "navigator": navigator_table,
+def surveys_table(args):
+    """Rates over many surveys: one survey's errors are shared by every journey of a run, so a run of
+    1,000 journeys measures that survey, not the survey error. Per world and sigma, --surveys survey
+    seeds of --survey-trials journeys each: the pooled rate, the spread between surveys, the forecast,
+    its bins, and the paired comparison with a baseline build on the same journeys. The pooled
+    journeys are written to OUT/surveys_w100_W_sS.json (the recovery credit's fit reads them)."""
+    print("| world | survey | journeys | reached goal | 95% CI | per survey (min-max) | between-survey sd | "
+          "forecast | bins in their CI | baseline | new only / baseline only | McNemar p |")
+    print("|---|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|")
+    pooled_by_sigma = {}
+    for sigma in ("1", "1.5"):
+        for w_seed in (1, 2, 3):
+            w = world(args, 100, w_seed)
+            runs, bases = [], []
+            for seed in range(1, args.surveys + 1):
+                extra = ["--sigma-map", sigma, "--seed", str(seed)]
+                runs.append(nav(args, w, *extra, trials=args.survey_trials))
+                if args.baseline:
+                    bases.append(nav(args, w, *extra, trials=args.survey_trials, binary=args.baseline))
+            journeys = [x for r in runs for x in r["journeys"] if x["outcome"] != "refused"]
+            pooled_by_sigma.setdefault(sigma, []).extend(journeys)
+            # Every survey's journeys in one file, for scripts/fit_recovery_credit.py.
+            with open(os.path.join(args.out, f"surveys_w100_{w_seed}_s{sigma}.json"), "w") as f:
+                json.dump({"journeys": journeys}, f)
+            k, n = sum(reached(x) for x in journeys), len(journeys)
+            rates = [sum(reached(x) for x in r["journeys"]) / len(r["journeys"]) for r in runs]
+            mean_rate = sum(rates) / len(rates)
+            sd = math.sqrt(sum((r - mean_rate) ** 2 for r in rates) / max(1, len(rates) - 1))
+            forecast = sum(x["planned_reliability"] for x in journeys) / n
+            b = bins({"journeys": journeys})
+            inside = sum(lo_ci <= mean <= hi_ci for _, _, _, mean, _, (lo_ci, hi_ci) in b)
+            cells = ["-", "-", "-"]
+            if bases:
+                a_only = b_only = 0
+                for r, base in zip(runs, bases):
+                    a, bo, _ = paired(r, base)
+                    a_only, b_only = a_only + a, b_only + bo
+                base_rate = sum(sum(reached(x) for x in r["journeys"]) for r in bases) / sum(
+                    len(r["journeys"]) for r in bases)
+                cells = [pct(base_rate), f"{a_only} / {b_only}", pvalue(mcnemar(a_only, b_only))]
+            lo, hi = wilson(k, n)
+            print(f"| w100_{w_seed} | {survey_label(sigma)} | {n} | {pct(k / n)} | [{100 * lo:.1f}, {100 * hi:.1f}] | "
+                  f"{pct(min(rates))}-{pct(max(rates))} | {100 * sd:.1f} pts | {pct(forecast)} | "
+                  f"{inside} of {len(b)} | {' | '.join(cells)} |", flush=True)
+    print("\nPooled over the three worlds and every survey:\n")
+    print("| survey | R bin | journeys | mean R | reached | 95% CI | in CI |")
+    print("|---|---|---:|---:|---:|---|---|")
+    for sigma, journeys in pooled_by_sigma.items():
+        k, n = sum(reached(x) for x in journeys), len(journeys)
+        lo, hi = wilson(k, n)
+        mean = sum(x["planned_reliability"] for x in journeys) / n
+        print(f"| {survey_label(sigma)} | all | {n} | {pct(mean)} | {pct(k / n)} | [{100 * lo:.1f}, {100 * hi:.1f}] | "
+              f"{'yes' if lo <= mean <= hi else '**no**'} |")
+        for blo, bhi, m, bmean, obs, (l, h) in bins({"journeys": journeys}):
+            print(f"| {survey_label(sigma)} | [{blo:.2f}, {bhi:.2f}) | {m} | {pct(bmean)} | {pct(obs)} | "
+                  f"[{100 * l:.1f}, {100 * h:.1f}] | {'yes' if l <= bmean <= h else '**no**'} |", flush=True)
+
+
+TABLES = {"sigmas": sigma_table, "surveys": surveys_table, "calibration": calibration_table, "navigator": navigator_table,
           "main": main_table, "seeds": seeds_table, "sensor": sensor_table, "paired": paired_table,
           "throughput": throughput_table}
 
@@ -272,6 +331,8 @@ def parse():
     p.add_argument("--out", default="build/nav-experiments", help="folder for the worlds")
     p.add_argument("--trials", type=int, default=1000)
     p.add_argument("--baseline", help="another neopipe build to compare with, journey by journey (sigmas table)")
+    p.add_argument("--surveys", type=int, default=5, help="survey seeds per world and sigma (surveys table)")
+    p.add_argument("--survey-trials", type=int, default=200, help="journeys per survey (surveys table)")
     p.add_argument("tables", nargs="*", metavar="TABLE", help=f"any of {', '.join(TABLES)} (default: all)")
     args = p.parse_args()
     unknown = [t for t in args.tables if t not in TABLES]

@@ -15,13 +15,18 @@ namespace {
 // Beyond this many standard deviations a bound changes R by less than 3e-7: not worth a look.
 constexpr double kReach = 5.0;
 
+// The offset scan for rivals: steps over [0, reach] on each side (reach / 48 is under 0.3 mm at
+// sigma 1.5), then halvings of the step that changes the winner (to 1e-4 of it).
+constexpr int kScanSteps = 48;
+constexpr int kBisections = 14;
+
 // neopipe_reliability_fit --trials 4000 --seed 1 (docs/navigation.md has the table and the errors).
 constexpr double kFittedLogK = 0.478903;
 constexpr double kFittedBeta = 1.075169;
 constexpr double kFittedGamma = 1.011016;
 
 // scripts/fit_recovery_credit.py on `neopipe nav --trials` runs (docs/navigation.md says which).
-constexpr double kRecoveredShare = 0.68;
+constexpr double kRecoveredShare = 0.74;
 
 struct OffsetBound {
   double slide;  ///< where along the slide
@@ -65,7 +70,7 @@ double start_view_agrees(const WorldViews& views, const Trajectory& trajectory, 
     return heading[axis] > 0 ? start[axis] + a - p[axis] : p[axis] - start[axis];
   };
   double agrees = 1.0;
-  const Eigen::Vector2d goal = views.position(trajectory.to);
+  const Eigen::Vector2d& goal = views.position(trajectory.to);
   sigma *= std::numbers::sqrt2;  // an object's place relative to the reference: both carry the survey's error
   for (int axis = 0; axis < 2; ++axis) {
     if (heading[axis] == 0) continue;
@@ -108,15 +113,17 @@ double trajectory_reliability(const WorldViews& views, const Trajectory& traject
   const Eigen::Vector2d across(-heading.y(), heading.x());
   const Eigen::Vector2d start = views.origin(trajectory.from);
   const double baseline = (views.position(trajectory.via) - views.position(trajectory.from.object)).norm();
-  // Across the track the slide is off by d(s) = -e c(s) + s g at distance s: e ~ N(0, sigma^2) is
-  // the reference's measurement error (it places the window, and it tilts the direction, hence
-  // c(s) = 1 +- s/L by the direction), g ~ N(0, sigma_g^2) the landmark's error over the baseline
-  // plus the motion's heading error, lumped at the goal's distance as the Monte Carlo model does.
+  // Across the track the slide is off by d(s) = e c(s) + s g at distance s: e ~ N(0, sigma^2) is
+  // the reference's survey error. It moves the window by e and turns the direction by -e/L towards
+  // the landmark (Trajp), +e/L away from it (Trajn), so c(s) = 1 - s/L on Trajp (the two cancel near
+  // the landmark) and 1 + s/L on Trajn (they add). g ~ N(0, sigma_g^2) is the landmark's error over
+  // the baseline plus the motion's heading error, lumped at the goal's distance as the Monte Carlo
+  // model does.
   const double towards = trajectory.direction == Direction::positive ? 1.0 : -1.0;
   const double sigma = errors.sigma;
   const double motion = std::hypot(errors.translation_per_mm, errors.rotation_per_mm * trajectory.slide / 2);
   const double sigma_g = std::hypot(sigma / baseline, motion);
-  const auto c = [&](double s) { return 1 + towards * s / baseline; };
+  const auto c = [&](double s) { return 1 - towards * s / baseline; };
   const auto sd = [&](double s) { return std::hypot(sigma * c(s), s * sigma_g); };
   // With the objects' own errors (below): the widest spread of an object's offset from the track.
   const double widest = std::hypot(std::max(sd(0), sd(trajectory.slide)), sigma);
@@ -134,44 +141,63 @@ double trajectory_reliability(const WorldViews& views, const Trajectory& traject
   // Conditions for success, each d(s) < limit (below) or d(s) > limit: the goal stays in the band...
   const double w_goal = across.dot(views.position(trajectory.to));
   std::vector<OffsetBound> bounds{{trajectory.slide, w_goal - lo, true}, {trajectory.slide, w_goal - hi, false}};
-  // ...no object beside the band is swept before the goal, and no object in the band that enters
-  // soon after the goal overtakes it. Scanned in segments as first_entering does, widened by the reach
-  // of the largest offset; an object seen twice adds the same bound twice, which changes nothing.
+  // ...and no other object enters before the goal. Whether one does is a step-like function of the
+  // offset: scanned outwards from 0 on each side, the first offset at which it wins (refined by
+  // bisection) is its bound. Scanning the real entry distances, not a linearisation, catches objects
+  // that pass a trailing corner in the survey and enter by an edge when the window is a little off.
+  // Objects are found in segments as first_entering does, widened by the reach of the largest
+  // offset, each scanned once (its bound is softened by its own error: twice would count it twice).
   const ObjectGrid& grid = views.grid();
   const std::span<const Eigen::Vector2d> objects = grid.objects();
   const double reach = kReach * widest;
   const Eigen::Vector2d widen(a + reach, a + reach);
-  const double nudge = 1e-9 * a;
   const double behind = trajectory.slide + std::numbers::sqrt2 * a;  // a later entry cannot overtake
   const Eigen::Vector2d goal = views.position(trajectory.to);
   const auto entry = [&](double shift, const Eigen::Vector2d& p) {
     return entry_distance(views.window(), start + shift * across, heading, p);
   };
-  // How the goal's entry moves with the offset: objects entering by another edge move differently.
-  const double probe = 1e-3 * a;
-  const auto goal_up = entry(probe, goal), goal_down = entry(-probe, goal);
+  // At offset d: does p enter before the goal? Unknown (nullopt) once the goal no longer enters:
+  // the goal's own bounds above end the scan there.
+  const auto wins = [&](double d, const Eigen::Vector2d& p) -> std::optional<bool> {
+    const auto g = entry(d, goal);
+    if (!g) return std::nullopt;
+    const auto t = entry(d, p);
+    return t && *t < *g;
+  };
+  const auto scan = [&](const Eigen::Vector2d& p, double side) {
+    double inside = 0;  // the goal first here
+    for (int k = 1; k <= kScanSteps; ++k) {
+      const double d = side * reach * k / kScanSteps;
+      const auto w = wins(d, p);
+      if (!w) return;
+      if (!*w) {
+        inside = d;
+        continue;
+      }
+      double outside = d;
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = (inside + outside) / 2;
+        (wins(mid, p).value_or(false) ? outside : inside) = mid;
+      }
+      const double at = (inside + outside) / 2;
+      bounds.push_back({entry(at, goal).value_or(trajectory.slide), at, side > 0});
+      return;
+    }
+  };
+  std::vector<std::uint32_t> near;
   for (double t0 = 0; t0 < behind; t0 += grid.cell()) {
     const double t1 = std::min(t0 + grid.cell(), behind);
     const Eigen::Vector2d p0 = start + t0 * heading, p1 = start + t1 * heading;
-    grid.for_each_near(p0.cwiseMin(p1) - Eigen::Vector2d(reach, reach), p0.cwiseMax(p1) + widen, [&](std::uint32_t id) {
-      if (id == trajectory.to) return;
-      const double w = across.dot(objects[id]);
-      if (w > lo && w < hi) {
-        const auto t = entry(0, objects[id]);
-        if (!t || *t >= behind || !goal_up || !goal_down) return;
-        const auto up = entry(probe, objects[id]), down = entry(-probe, objects[id]);
-        if (!up || !down) return;
-        const double closing = ((*up - *goal_up) - (*down - *goal_down)) / (2 * probe);
-        if (std::abs(closing) < 1e-9) return;  // same edge: the order holds whatever the offset
-        const double overtake = -(*t - trajectory.slide) / closing;
-        if (std::abs(overtake) <= reach) bounds.push_back({trajectory.slide, overtake, closing < 0});
-        return;
-      }
-      const double shift = w >= hi ? w - hi + nudge : w - lo - nudge;
-      if (std::abs(shift) > reach) return;
-      const auto t = entry(shift, objects[id]);
-      if (t && *t < trajectory.slide) bounds.push_back({*t, shift, shift > 0});
-    });
+    grid.for_each_near(p0.cwiseMin(p1) - Eigen::Vector2d(reach, reach), p0.cwiseMax(p1) + widen,
+                       [&](std::uint32_t id) { near.push_back(id); });
+  }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  for (const std::uint32_t id : near) {
+    // The reference and the direction's landmark are known to the navigator: never taken for the goal.
+    if (id == trajectory.to || id == trajectory.from.object || id == trajectory.via) continue;
+    scan(objects[id], 1.0);
+    scan(objects[id], -1.0);
   }
 
   // Each bound's object (the goal too) sits where the survey put it only to within its own error,
@@ -188,8 +214,8 @@ double trajectory_reliability(const WorldViews& views, const Trajectory& traject
       const double e = sigma * coarse.nodes[j];
       double p = coarse.weights[j];
       for (const OffsetBound& b : bounds) {
-        // Success needs -e c + s g < limit + own (below) or > limit + own, own ~ N(0, sigma^2).
-        const double margin = b.limit - (-e * c(b.slide) + b.slide * g);
+        // Success needs e c + s g < limit + own (below) or > limit + own, own ~ N(0, sigma^2).
+        const double margin = b.limit - (e * c(b.slide) + b.slide * g);
         p *= sigma > 0 ? normal_cdf((b.below ? margin : -margin) / sigma) : ((b.below ? margin : -margin) > 0 ? 1 : 0);
         if (p < 1e-15) break;
       }

@@ -59,10 +59,11 @@ double selection_reliability(int visible, double sigma, double window_side);
 
 /// Probability that the first object to enter the navigator's sliding window is `trajectory.to`.
 ///
-/// The approximation: across the track the slide is off by d(s) = -e c(s) + s g at distance s, with
-/// e ~ N(0, sigma^2) the reference's measurement error (it places the window and tilts the
-/// direction: c(s) = 1 +- s / L over the baseline L) and g ~ N(0, sigma^2 / L^2 + t^2 + (r s_g / 2)^2)
-/// the landmark's error plus the motion's across-track (t) and heading (r) errors over the slide s_g.
+/// The approximation: across the track the slide is off by d(s) = e c(s) + s g at distance s, with
+/// e ~ N(0, sigma^2) the reference's survey error (it places the window and turns the direction:
+/// c(s) = 1 - s / L on Trajp, 1 + s / L on Trajn, over the baseline L) and
+/// g ~ N(0, sigma^2 / L^2 + t^2 + (r s_g / 2)^2) the landmark's error plus the motion's across-track
+/// (t) and heading (r) errors over the slide s_g.
 /// Success needs the goal to stay inside the swept band, no object beside the band to be swept
 /// before the goal, and no object in the band to overtake it; each is a bound on d at some s. R
 /// integrates the bounds over g (64-node quadrature) with e's interval in closed form, times the

@@ -94,7 +94,8 @@ double simulate_trajectory(const WorldViews& views, const Trajectory& trajectory
     const ObjectGrid grid(truth, views.grid().cell());
     const Eigen::Vector2d seen = towards * ((landmark + e2) - (reference + e1));
     const double angle = std::atan2(seen.y(), seen.x()) + turn(rng);
-    const auto hit = first_entering(grid, views.window(), views.origin(trajectory.from) - e1,
+    // The navigator holds the reference where it really is (surveyed + e1): the window moves with it.
+    const auto hit = first_entering(grid, views.window(), views.origin(trajectory.from) + e1,
                                     Eigen::Vector2d(std::cos(angle), std::sin(angle)), reference, known);
     if (hit && hit->object == trajectory.to) ++agreed;
   }

@@ -7,9 +7,9 @@
 // navigator remembers where it held each landmark (the moves it commanded since) and goes back: to
 // the landmark held before the entry that failed, to take that entry's next candidate when its QOC
 // proved the landmark wrong, or else to the one held before the previous entry, to take the
-// previous entry's next candidate (the second object to enter a slide, the next most isolated, the
-// next object of an Obvious view). A depth-first search over candidates, bounded per entry and per
-// journey.
+// previous entry's next candidate (the same slide with the window beside the track on either side,
+// then the second object to enter it; the next most isolated; the next object of an Obvious view).
+// A depth-first search over candidates, bounded per entry and per journey.
 
 #include <fmt/format.h>
 
@@ -36,6 +36,19 @@ std::optional<Failure> take_start(Pilot& pilot, const MapEntry& entry, detail::H
   return detail::adjust(pilot, held.landmark, held.corner);
 }
 
+// A slide's k-th candidate: the first newcomer on the map's track, then (when the navigator has an
+// offset) the first newcomer with the window moved beside the track on one side and the other, then
+// the later newcomers on the track.
+struct SlideTry {
+  int skip = 0;
+  double offset = 0;
+};
+SlideTry slide_try(int candidate, double offset) {
+  if (offset <= 0 || candidate == 0) return {candidate, 0.0};
+  if (candidate <= 2) return {0, candidate == 1 ? offset : -offset};
+  return {candidate - 2, 0.0};
+}
+
 std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, int candidate, detail::Hold& held,
                                     EntryRecord& record) {
   detail::SeekCandidate sought{held.landmark, false};
@@ -45,7 +58,8 @@ std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, int can
   bool doubtful = sought.doubtful;
   if (entry.slide) {
     Eigen::Vector2d found = landmark;
-    if (auto failure = detail::slide(pilot, held, landmark, *entry.slide, entry.slide_limit, candidate, found))
+    const SlideTry t = slide_try(candidate, pilot.config().slide_offset);
+    if (auto failure = detail::slide(pilot, held, landmark, *entry.slide, entry.slide_limit, t.skip, t.offset, found))
       return failure;
     landmark = found;
     doubtful = doubtful || candidate > 0;

@@ -62,8 +62,9 @@ struct NavigatorConfig {
   double max_slide = 2000;        ///< mm: a trajectory that meets nothing this far is lost
   bool recovery = true;           ///< apply the map's recovery rules and backtrack (off: the "no recovery" runs)
   /// Candidates an entry may take after the description's choice, and returns to an earlier landmark
-  /// a journey may make, when what follows a choice leads nowhere (follow.cpp).
-  int max_alternatives = 2;
+  /// a journey may make, when what follows a choice leads nowhere (follow.cpp). A slide's
+  /// candidates are the slide beside the track on either side (slide_offset), then the next newcomer.
+  int max_alternatives = 3;
   int max_backtracks = 6;
   /// What the navigator expects of its arm's unintended turns (sd per move: turn_sigma0 +
   /// turn_sigma_per_mm * length, rad) and of its own positions of whole marbles (sd, mm): it weighs
@@ -80,6 +81,10 @@ struct NavigatorConfig {
   /// map-maker (its positions have errors). When a view or a QOC measured as seen does not match the
   /// map, the navigator tries them on the other side before it gives up (seek.cpp, verify.cpp).
   double view_margin = 2.0;
+  /// mm: how far beside the map's track a slide is tried again when its first newcomer led nowhere
+  /// (the survey's errors turn the direction and move the goal: it may pass just beside the window).
+  /// 0: no such retry, the next newcomer is the next candidate.
+  double slide_offset = 0;
 };
 
 /// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six

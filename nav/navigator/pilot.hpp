@@ -113,16 +113,20 @@ struct SeekCandidate {
 };
 
 /// The landmark `description` selects in the view of `hold`, with the map-maker's functions; with
-/// `alternative` k > 0, the k-th next candidate. A Failure when there is no such candidate.
+/// `alternative` k > 0, the k-th next candidate. When the view has too few, the window looks beyond
+/// its far edges (config.view_margin) for objects the map-maker placed inside. A Failure when there
+/// is no such candidate.
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
                             SeekCandidate& found);
 
 /// Slides the window along the held landmark -> `via` (positive) or back until an object that was
 /// not in view enters; `found` is where that new object is seen. With `alternative` k > 0 it goes on
-/// past the first k newcomers and takes the next. Failure after `limit` (the map's bound), at most
+/// past the first k newcomers and takes the next. With an `offset` (mm, positive to the left of the
+/// direction of travel) the window first moves that far across the track: a neighbouring placement,
+/// for a goal that passed just beside the window. Failure after `limit` (the map's bound), at most
 /// config.max_slide.
 std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             std::optional<double> limit, int alternative, Eigen::Vector2d& found);
+                             std::optional<double> limit, int alternative, double offset, Eigen::Vector2d& found);
 
 /// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
 /// occupied quadrants. Returns the hold it ends in (the last corner visited).

@@ -2,11 +2,15 @@
 // with the map-maker's own selection functions (nav/common/landmarks.hpp), so both choose alike.
 // The view as seen may differ from the map-maker's: its positions have errors, so an object near a
 // border may be on the other side for it. The candidates are therefore ranked, the description's
-// choice first; the navigator takes the next one when the first leads nowhere (follow.cpp).
+// choice first; the navigator takes the next one when the first leads nowhere (follow.cpp). When
+// the view shows too few, the window looks beyond its far edges, where the camera cannot see but
+// the map-maker's errors may have put an object inside.
 
 #include <fmt/format.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <utility>
 
 #include "nav/common/landmarks.hpp"
 #include "nav/navigator/pilot.hpp"
@@ -52,14 +56,59 @@ std::vector<SeekCandidate> seek_candidates(const HeldView& view, Description des
   return out;
 }
 
+// Objects the map-maker may have seen in the window that lie beyond its far edges (those away from
+// the held corner), where the camera cannot see them: the window moves away from the corner by
+// `reach` across each far edge in turn, looks, and comes back. Positions are in the held window's
+// coordinates, the nearest to the window first; objects already `listed` are left out.
+std::optional<Failure> beyond_far_edges(Pilot& pilot, const Hold& hold, double reach,
+                                        std::vector<Eigen::Vector2d> listed, std::vector<Eigen::Vector2d>& found) {
+  const WindowModel& window = pilot.window();
+  const Eigen::Vector2d corner = window.corner_point(hold.corner);
+  const Eigen::Vector2d outward = (Eigen::Vector2d::Constant(window.side / 2) - corner).cwiseSign() * reach;
+  const Eigen::Rotation2Dd unturn(pilot.heading());
+  listed.push_back(hold.landmark);
+  std::vector<std::pair<double, Eigen::Vector2d>> beyond;
+  for (int axis = 0; axis < 2; ++axis) {
+    Eigen::Vector2d across_edge = Eigen::Vector2d::Zero();
+    across_edge[axis] = outward[axis];
+    const Eigen::Vector2d move = unturn.inverse() * across_edge;  // in the real window's axes
+    const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.move_and_look(move));
+    const bool moved = pilot.moved();
+    for (const Eigen::Vector2d& p : moved ? seen : std::vector<Eigen::Vector2d>{}) {
+      const Eigen::Vector2d at = p + move;  // where it is in the held window's coordinates
+      const Eigen::Vector2d exact = corner + unturn * (at - hold.landmark);
+      const double depth = std::min({exact.x(), exact.y(), window.side - exact.x(), window.side - exact.y()});
+      const bool known = std::any_of(listed.begin(), listed.end(),
+                                     [&](const Eigen::Vector2d& q) { return (at - q).norm() < tracking_gate(reach); });
+      if (known || depth > 0 || depth <= -reach) continue;
+      beyond.emplace_back(-depth, at);
+      listed.push_back(at);
+    }
+    if (!moved) continue;  // beyond the arm's reach: nothing to see there
+    pilot.move_and_look(-move);
+    if (!pilot.moved()) return Failure{Ending::lost, "cannot come back from a look beyond the window's edges"};
+  }
+  std::stable_sort(beyond.begin(), beyond.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  for (const auto& b : beyond) found.push_back(b.second);
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
                             SeekCandidate& found) {
   const double margin = pilot.config().view_margin;
   const HeldView view = held_view(pilot.sighting(), hold, pilot.window(), pilot.heading(), margin);
-  const std::vector<SeekCandidate> candidates = seek_candidates(view, description, margin);
+  std::vector<SeekCandidate> candidates = seek_candidates(view, description, margin);
   const auto k = static_cast<std::size_t>(alternative);
+  if (k >= candidates.size() && margin > 0 && !(description == Description::Obvious && view.points.size() > 2)) {
+    // Too few candidates in sight: the map-maker's may lie beyond the far edges, a guess to confirm.
+    std::vector<Eigen::Vector2d> listed = view.just_outside;
+    for (const SeekCandidate& c : candidates) listed.push_back(c.landmark);
+    std::vector<Eigen::Vector2d> beyond;
+    if (auto failure = beyond_far_edges(pilot, hold, margin, listed, beyond)) return failure;
+    for (const Eigen::Vector2d& p : beyond) candidates.push_back({p, true});
+  }
   if (k >= candidates.size()) {
     if (alternative == 0) {
       return Failure{Ending::lost, fmt::format("no {} landmark in view ({} objects besides the reference)",

@@ -71,7 +71,7 @@ std::vector<Eigen::Vector2d> newcomers(const std::vector<Eigen::Vector2d>& seen,
 }  // namespace
 
 std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             std::optional<double> limit, int alternative, Eigen::Vector2d& found) {
+                             std::optional<double> limit, int alternative, double offset, Eigen::Vector2d& found) {
   const NavigatorConfig& config = pilot.config();
   const double max_slide = std::min(config.max_slide, limit.value_or(config.max_slide));
   const double side = config.window.side;
@@ -84,6 +84,20 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
   // edge is not taken for a newcomer.
   std::vector<Eigen::Vector2d> known = held_view(pilot.sighting(), hold, config.window, pilot.heading()).points;
   Eigen::Vector2d reference = hold.landmark;  // predicted place: ties are broken from it, as the map-maker does
+  if (offset != 0) {
+    // A neighbouring placement: the same slide with the window moved across the track first. What
+    // is in view once it has moved is known, as at any start.
+    const Eigen::Vector2d d = offset * Eigen::Vector2d(-u.y(), u.x());
+    pilot.move_and_look(d);
+    if (!pilot.moved()) return Failure{Ending::lost, "the arm cannot move the window beside the trajectory"};
+    reference -= d;
+    const Eigen::Rotation2Dd unturn(pilot.heading());
+    known.clear();
+    for (const Eigen::Vector2d& p : everything_seen(pilot.sighting())) {
+      const Eigen::Vector2d q = corner + unturn * (p - hold.landmark);
+      if ((q.array() > 0).all() && (q.array() < side).all()) known.push_back(p);
+    }
+  }
   double gate = tracking_gate(0);
   double slid = 0;
   double last_step = 0;

@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_test_support.hpp"
 
@@ -205,6 +209,46 @@ TEST_F(NavCli, BadInputIsOneLineError) {
   EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", file("bad.yaml"), "--trials", "2"}), "bad.yaml"));
   EXPECT_TRUE(one_error_line(
       run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--plot", file("p.gif")}), "p.gif"));
+}
+
+// --survey-csv: every object's surveyed place beside its true one, the error their distance; with
+// --sigma-map 0 the survey is the truth. An unwritable path is a one-line error.
+TEST_F(NavCli, SurveyCsvListsWhatTheMapMakerBelieved) {
+  const std::string world = small_world();
+  for (const char* sigma : {"0", "1"}) {
+    const auto r = run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--sigma-map", sigma,
+                                "--survey-csv", file("survey.csv")});
+    // Written before the journey, whatever becomes of it (a wrong survey may leave it lost).
+    if (std::string(sigma) == "0") {
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    ASSERT_TRUE(fs::exists(file("survey.csv"))) << r.err;
+    std::istringstream csv(slurp(file("survey.csv")));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "id,x,y,true_x,true_y,error");
+    int rows = 0;
+    double largest = 0;
+    while (std::getline(csv, line)) {
+      std::vector<double> v;
+      std::istringstream fields(line);
+      for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+      ASSERT_EQ(v.size(), 6U) << line;
+      EXPECT_EQ(v[0], rows);
+      EXPECT_NEAR(std::hypot(v[1] - v[3], v[2] - v[4]), v[5], 1e-3);
+      largest = std::max(largest, v[5]);
+      ++rows;
+    }
+    EXPECT_EQ(rows, 4);
+    if (std::string(sigma) == "0") {
+      EXPECT_EQ(largest, 0.0);
+    } else {
+      EXPECT_GT(largest, 0.1);
+    }
+  }
+  EXPECT_TRUE(one_error_line(
+      run_neopipe({"nav", "--world", world, "--from", "0", "--to", "2", "--survey-csv", file("no/such/dir/s.csv")}),
+      "--survey-csv"));
 }
 
 // --min-reliability: routes forecast below it are refused. In trials they are counted apart, not as

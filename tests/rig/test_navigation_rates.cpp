@@ -2,10 +2,12 @@
 // with the power to see a fall that matters. Each runs the same journeys as `neopipe nav --trials N
 // --sigma-map S --seed 1` on the default sparse world, and asks that the 95% lower bound of the
 // share reaching the goal stay above the published level less 2 points. The journeys are enough
-// that the bound lies 1.0 (98%, 1,000 journeys) and 1.3 points (90%, 2,000) under the rate: a
+// that the bound lies 0.8 (99%, 1,000 journeys) and 1.0 point (96%, 2,000) under the rate: a
 // harmless change keeps it with room for its noise, and a 2-point fall fails (the bound then lies
-// 3 points under the level). The forecast is checked on the same journeys: its mean within 2 points
-// of the rate. Its bins of planned R are printed, not asserted: they do not all hold yet (issue 17).
+// about 3 points under the level). The forecast is checked on the same journeys: its mean within 2
+// points of the rate. Its bins of planned R are printed, not asserted: one survey's errors are shared
+// by every journey here, so the bins are judged over many surveys (scripts/nav_experiments.py
+// surveys, docs/navigation-experiments.md).
 // Deterministic: the same seeds give the same journeys, so these tests never flake.
 
 #include <gtest/gtest.h>
@@ -66,14 +68,15 @@ void expect_level_and_calibrated_forecast(const rig::TrialsSummary& t, double le
   }
 }
 
-// Published: 98.4% of 1,000 (docs/navigation-experiments.md, issue 17); the level 98%.
+// Published: 99.1% of 1,000 (docs/navigation-experiments.md, issue 17, second session); the level
+// 99%: the bound lies at 98.3%, 1.3 points above the level less 2.
 TEST(NavigationRates, SparseWorldWithAOneMillimetreSurvey) {
-  expect_level_and_calibrated_forecast(trials_at(1.0, 1000), 0.98);
+  expect_level_and_calibrated_forecast(trials_at(1.0, 1000), 0.99);
 }
 
-// Published: 91.5% of 1,000, the paper's survey error; the level 90%, over 2,000 journeys.
+// Published: 95.8% of 2,000, the paper's survey error; the level 95% (the bound at 94.8%).
 TEST(NavigationRates, SparseWorldWithAOneAndAHalfMillimetreSurvey) {
-  expect_level_and_calibrated_forecast(trials_at(1.5, 2000), 0.90);
+  expect_level_and_calibrated_forecast(trials_at(1.5, 2000), 0.95);
 }
 
 }  // namespace

@@ -173,3 +173,62 @@ TEST(ViewMargin, AnObviousLandmarkJustOutsideTheWindowIsStillTaken) {
 
 }  // namespace
 }  // namespace neopipe::nav::navigator
+
+namespace neopipe::nav::navigator {
+namespace {
+
+// The survey put an object inside the window that really lies beyond its far edge, too far for the
+// camera to see even a cap of it: the navigator looks there before it gives up.
+TEST(ViewMargin, AnObviousLandmarkBeyondTheFarEdgeIsFoundByLookingThere) {
+  sim::World world;
+  world.size = {300, 300};
+  // From the first held at SW the window spans x 97.5..147.5: the second lies 3.5 mm beyond its East
+  // edge; held at SW, the second sees the third alone.
+  world.objects = {{100, 100}, {151, 120}, {170, 150}};
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, SW), (Obvious, -))");
+  for (const double margin : {4.5, 0.0}) {
+    Rig rig(world);
+    rig.config().view_margin = margin;
+    const test_rig::Journey j = test_rig::travel(rig, map, 0, Corner::SW);
+    if (margin == 0) {
+      EXPECT_EQ(j.report.ending, Ending::lost);
+      continue;
+    }
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, 2u);
+    EXPECT_EQ(j.report.backtracks, 0);
+  }
+}
+
+// A slide whose goal the survey put inside the swept band passes just beside it, and a farther
+// marble enters instead; its QOC proves it wrong. Tried again with the window moved beside the
+// track, the slide meets the goal.
+TEST(SlideRetry, ASlideThatPassesBesideItsGoalIsTriedAgainBesideTheTrack) {
+  sim::World world;
+  world.size = {400, 300};
+  // S held at SW sees V due East (the direction); the band swept East spans y 97.5..147.5. G lies
+  // 3 mm beyond it (no cap in view), Y beside G gives it QOC 1, X far East inside the band (QOC 0).
+  constexpr std::size_t kS = 0, kG = 2, kX = 4;
+  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
+  const mapmaker::WorldViews views(test_rig::workspace_of(world), WindowModel::with_side(50));
+  ASSERT_EQ(views.qoc(kG), 1);
+  ASSERT_EQ(views.qoc(kX), 0);
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:250, (1, -), -))");
+  for (const double offset : {4.0, 0.0}) {
+    Rig rig(world);
+    rig.config().slide_offset = offset;
+    const test_rig::Journey j = test_rig::travel(rig, map, kS, Corner::SW);
+    if (offset == 0) {
+      EXPECT_NE(j.report.ending, Ending::arrived);
+      continue;
+    }
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, kG);
+    EXPECT_EQ(j.report.backtracks, 1);
+    EXPECT_EQ(j.report.entries.back().candidate, 1);
+    EXPECT_TRUE(j.report.entries.back().verified);
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::navigator
