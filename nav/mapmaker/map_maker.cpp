@@ -92,6 +92,14 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     }
     rs.check = check_step(views_, s.landmark, confusable, options_.border_tolerance);
     rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust), std::nullopt};
+    // The goal is always looked around when its QOC is sure, even when some mistake could show the
+    // same: arriving at the wrong object is otherwise an unaware failure, and one that shows another
+    // QOC sends the navigator back for another candidate.
+    // (Measured at every unverifiable step it finds more mistakes than it can undo: on five surveys of
+    // two worlds at 1.5 mm the goal rate fell from 91.0% to 88.6%; at the goal alone it rose to 91.8%.)
+    if (last && rs.check.kind == Verifiability::unverifiable) {
+      rs.entry.rules.push_back({rs.check.qoc, std::nullopt, Description::Isol, true});
+    }
     // The navigator stops a slide its landmark has not ended by here: a window beyond the slide,
     // room for what errors move and for the next newcomers when the first proves wrong.
     if (s.slide) rs.entry.slide_limit = std::ceil(kSlideSlack * s.arrival_travel + views_.window().side);

@@ -268,3 +268,43 @@ TEST(MapMaker, SameWorldSameRoute) {
 
 }  // namespace
 }  // namespace neopipe::nav::mapmaker
+
+namespace neopipe::nav::mapmaker {
+namespace {
+
+// An unverifiable goal still carries its QOC, to be measured on arrival: a wrong goal that shows
+// another QOC sends the navigator back instead of ending an unaware failure. Unverifiable steps on
+// the way carry none (measured there, it finds more mistakes than it can undo).
+TEST(MapMaker, AnUnverifiableGoalCarriesItsQocForArrival) {
+  MapMakerOptions o;
+  o.errors.sigma = 1.5;
+  o.border_tolerance = 6.6;
+  const MapMaker maker(random_workspace(150, 400, 42, 6), o);
+  int goals = 0, on_the_way = 0;
+  for (std::uint32_t a = 0; a < 150; a += 3) {
+    const std::uint32_t b = (a * 37 + 11) % 150;
+    if (a == b) continue;
+    try {
+      const Route r = maker.plan(a, b, CostCriterion::reliability);
+      for (std::size_t k = 0; k < r.steps.size(); ++k) {
+        if (r.steps[k].check.kind != Verifiability::unverifiable) continue;
+        const MapEntry& e = r.custom_map.entries[k + 1];
+        if (k + 1 == r.steps.size()) {
+          ++goals;
+          EXPECT_EQ(e.verified_qoc(), r.steps[k].check.qoc);
+          EXPECT_TRUE(e.verify_only_in_doubt());
+          EXPECT_FALSE(e.adjust.has_value());
+        } else {
+          ++on_the_way;
+          EXPECT_FALSE(e.verified_qoc().has_value());
+        }
+      }
+    } catch (const UnreachableGoal&) {
+    }
+  }
+  EXPECT_GT(goals, 0);
+  EXPECT_GT(on_the_way, 0);
+}
+
+}  // namespace
+}  // namespace neopipe::nav::mapmaker
