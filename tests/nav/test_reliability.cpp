@@ -160,6 +160,23 @@ TEST(Reliability, TwoMarblesEnteringByTheSameEdgeAlmostTogetherAreACoinToss) {
 namespace neopipe::nav::mapmaker {
 namespace {
 
+// Object 0 held at `corner` slides along the line to the obvious object 1 (or back); object 2 must
+// be the goal. The analytic R and a Monte Carlo that moves every object by its own error and holds
+// the reference where it really is (20,000 draws).
+struct Rated {
+  double analytic = -1;
+  double simulated = -1;
+};
+Rated rate_trajectory(const Workspace& w, Corner corner, Direction direction, const NavigatorErrors& errors) {
+  const WorldViews views(w, WindowModel::with_side(50));
+  const auto t = trajectory_from(views, {0, corner}, Description::Obvious, direction);
+  EXPECT_TRUE(t.has_value());
+  if (!t) return {};
+  EXPECT_EQ(t->via, 1U);
+  EXPECT_EQ(t->to, 2U);
+  return {trajectory_reliability(views, *t, errors), simulate_trajectory(views, *t, errors, 20000, 7)};
+}
+
 // Issue 17: every object lies off its surveyed place by its own error, and the model must price
 // one that lies just outside the swept band: with it the analytic R agrees with a Monte Carlo that
 // moves every object (the model that moved the reference and the direction landmark only rated an
@@ -169,21 +186,15 @@ TEST(Reliability, AnObjectJustOutsideTheSweptBandIsPricedByItsOwnError) {
     // Reference at (100, 100) held at SW, the direction landmark due East in view: the window slides
     // East over y in [97.5, 147.5]; the goal lies ahead inside, the distractor beside the band.
     const Workspace w{{400, 300}, {{100, 100}, {140, 100}, {260, 120}, {200, distractor_y}}};
-    const WorldViews views(w, WindowModel::with_side(50));
-    const auto t = trajectory_from(views, {0, Corner::SW}, Description::Obvious, Direction::positive);
-    EXPECT_TRUE(t.has_value());
-    if (!t) return -1.0;
-    EXPECT_EQ(t->to, 2U);
     NavigatorErrors errors;
     errors.translation_per_mm = 0;
     errors.rotation_per_mm = 0;
     errors.sigma = 0;
-    EXPECT_EQ(trajectory_reliability(views, *t, errors), 1.0);
+    EXPECT_EQ(rate_trajectory(w, Corner::SW, Direction::positive, errors).analytic, 1.0);
     errors.sigma = 1.5;
-    const double analytic = trajectory_reliability(views, *t, errors);
-    const double simulated = simulate_trajectory(views, *t, errors, 20000, 7);
-    EXPECT_NEAR(analytic, simulated, 0.03) << "distractor at y " << distractor_y;
-    return analytic;
+    const Rated r = rate_trajectory(w, Corner::SW, Direction::positive, errors);
+    EXPECT_NEAR(r.analytic, r.simulated, 0.03) << "distractor at y " << distractor_y;
+    return r.analytic;
   };
   const double near = check(150.5);  // 3 mm outside the band
   const double far = check(165.5);   // 18 mm outside
@@ -191,26 +202,12 @@ TEST(Reliability, AnObjectJustOutsideTheSweptBandIsPricedByItsOwnError) {
   EXPECT_GT(far, 0.98);
 }
 
-}  // namespace
-}  // namespace neopipe::nav::mapmaker
-
-namespace neopipe::nav::mapmaker {
-namespace {
-
 // Issue 17, second session: two trajectories rebuilt from surveys where the navigator failed far
-// more often than the map-maker forecast. The model must agree with a Monte Carlo that moves every
-// object by its own error and holds the reference where it really is (the window moves with it).
-double rated_against_simulated(const Workspace& w, double sigma, double& simulated) {
-  const WorldViews views(w, WindowModel::with_side(50));
-  const auto t = trajectory_from(views, {0, Corner::SE}, Description::Obvious, Direction::negative);
-  EXPECT_TRUE(t.has_value());
-  if (!t) return -1.0;
-  EXPECT_EQ(t->via, 1U);
-  EXPECT_EQ(t->to, 2U);
+// more often than the map-maker forecast (both held at SE, sliding away from the landmark: Trajn).
+Rated rebuilt(const Workspace& w, double sigma) {
   NavigatorErrors errors;
   errors.sigma = sigma;
-  simulated = simulate_trajectory(views, *t, errors, 20000, 3);
-  return trajectory_reliability(views, *t, errors);
+  return rate_trajectory(w, Corner::SE, Direction::negative, errors);
 }
 
 // Sliding away from the direction's landmark (Trajn), the reference's error moves the window and
@@ -226,11 +223,10 @@ TEST(Reliability, OnTrajnTheReferencesErrorAndTheTurnItCausesAddUp) {
                      {144.30, 178.60},
                      {273.38, 119.14},
                      {247.99, 84.29}}};
-  double simulated = 0;
-  const double analytic = rated_against_simulated(w, 1.5, simulated);
-  EXPECT_NEAR(analytic, simulated, 0.03);
-  EXPECT_LT(analytic, 0.93);
-  EXPECT_GT(analytic, 0.85);
+  const Rated r = rebuilt(w, 1.5);
+  EXPECT_NEAR(r.analytic, r.simulated, 0.03);
+  EXPECT_LT(r.analytic, 0.93);
+  EXPECT_GT(r.analytic, 0.85);
 }
 
 // A marble that the surveyed slide passes just beyond the window's trailing corner enters by the
@@ -245,10 +241,9 @@ TEST(Reliability, AMarbleSkimmingTheTrailingCornerIsARival) {
                      {206.62, 110.11},
                      {235.41, 123.52},
                      {257.41, 147.78}}};
-  double simulated = 0;
-  const double analytic = rated_against_simulated(w, 1.0, simulated);
-  EXPECT_NEAR(analytic, simulated, 0.03);
-  EXPECT_LT(analytic, 0.75);
+  const Rated r = rebuilt(w, 1.0);
+  EXPECT_NEAR(r.analytic, r.simulated, 0.03);
+  EXPECT_LT(r.analytic, 0.75);
 }
 
 }  // namespace
