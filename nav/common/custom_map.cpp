@@ -81,7 +81,7 @@ class Reader {
     expect('(');
     const std::string desc = word();
     const auto d = parse_description(desc);
-    if (!d) fail("a description (Obvious, Isol or *)", desc);
+    if (!d) fail("a description (Obvious, Isol, Far, Near or *)", desc);
     e.seek = *d;
     while (true) {
       expect(',');
@@ -126,7 +126,7 @@ class Reader {
       expect(',');
       const std::string desc = word();
       const auto d = parse_description(desc);
-      if (!d) fail("a description (Obvious, Isol or *)", desc);
+      if (!d) fail("a description (Obvious, Isol, Far, Near or *)", desc);
       r.seek = *d;
     }
     expect(')');

@@ -8,12 +8,13 @@
 namespace neopipe::nav {
 
 std::string_view description_name(Description d) {
-  constexpr std::array<std::string_view, 3> names{"Obvious", "Isol", "*"};
+  constexpr std::array<std::string_view, 5> names{"Obvious", "Isol", "*", "Far", "Near"};
   return names[static_cast<std::size_t>(d)];
 }
 
 std::optional<Description> parse_description(std::string_view text) {
-  for (const Description d : {Description::Obvious, Description::Isol, Description::Any}) {
+  for (const Description d :
+       {Description::Obvious, Description::Isol, Description::Any, Description::Far, Description::Near}) {
     if (description_name(d) == text) return d;
   }
   return std::nullopt;
@@ -75,22 +76,24 @@ std::optional<std::size_t> isolated_landmark(const View& view) {
   return best;
 }
 
+namespace {
+
+// Near's order: nearer to the reference first; exact ties as `preferred` breaks them past distance.
+bool nearer(const Eigen::Vector2d& reference, const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+  const double dp = (p - reference).squaredNorm();
+  const double dq = (q - reference).squaredNorm();
+  if (dp != dq) return dp < dq;
+  if (p.x() != q.x()) return p.x() > q.x();
+  return p.y() > q.y();
+}
+
+}  // namespace
+
 std::optional<std::size_t> select_landmark(Description description, const View& view) {
-  switch (description) {
-    case Description::Obvious:
-      return obvious_landmark(view);
-    case Description::Isol:
-      return isolated_landmark(view);
-    case Description::Any: {
-      std::optional<std::size_t> best;
-      const Eigen::Vector2d& ref = view.points[view.reference];
-      for (std::size_t i = 0; i < view.points.size(); ++i) {
-        if (i != view.reference && (!best || preferred(ref, view.points[i], view.points[*best]))) best = i;
-      }
-      return best;
-    }
-  }
-  return std::nullopt;
+  if (description == Description::Obvious) return obvious_landmark(view);
+  if (description == Description::Isol) return isolated_landmark(view);
+  const std::vector<std::size_t> ranked = ranked_landmarks(description, view);
+  return ranked.empty() ? std::nullopt : std::optional<std::size_t>(ranked.front());
 }
 
 std::vector<std::size_t> ranked_landmarks(Description description, const View& view) {
@@ -105,6 +108,9 @@ std::vector<std::size_t> ranked_landmarks(Description description, const View& v
     const std::vector<int> c = c_values(view);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t p, std::size_t q) { return c[p] != c[q] ? c[p] > c[q] : by_preference(p, q); });
+  } else if (description == Description::Near) {
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t p, std::size_t q) { return nearer(ref, view.points[p], view.points[q]); });
   } else {
     std::stable_sort(order.begin(), order.end(), by_preference);
   }

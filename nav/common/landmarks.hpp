@@ -14,7 +14,10 @@ namespace neopipe::nav {
 
 /// What a custom-map entry tells the navigator to seek (paper §5.5): the only other object in view
 /// (Obvious), the most isolated object in view (Isol), or any object (Any, for the first entry).
-enum class Description : std::uint8_t { Obvious, Isol, Any };
+/// Far and Near, the objects in view farthest from and nearest to the reference, extend the paper's
+/// language (its §8 leaves it open): more than one landmark per view to step to or take a direction
+/// from, each rated by how surely the navigator ranks it alike (docs/navigation.md, "Descriptions").
+enum class Description : std::uint8_t { Obvious, Isol, Any, Far, Near };
 
 std::string_view description_name(Description d);
 std::optional<Description> parse_description(std::string_view text);
@@ -43,11 +46,13 @@ std::vector<int> c_values(const View& view);
 /// object. None when nothing but the reference is in view.
 std::optional<std::size_t> isolated_landmark(const View& view);
 
-/// The landmark `description` selects in `view`; Any takes the preferred object (the farthest).
+/// The landmark `description` selects in `view`; Any and Far take the preferred object (the
+/// farthest), Near the nearest.
 std::optional<std::size_t> select_landmark(Description description, const View& view);
 
 /// Every object in view but the reference, in the order `description` prefers them: the first is
-/// select_landmark's choice (Obvious, when there is one, ranks the rest by preference like Any);
+/// select_landmark's choice (Obvious, when there is one, ranks the rest by preference like Any; Near
+/// ranks nearest first);
 /// the next ones are the navigator's second and third candidates when the first leads nowhere.
 std::vector<std::size_t> ranked_landmarks(Description description, const View& view);
 

@@ -20,7 +20,7 @@ MapMaker::MapMaker(Workspace workspace, const MapMakerOptions& options)
     : workspace_(std::move(workspace)),
       options_(options),
       views_(workspace_, options.window),
-      steps_(views_, options.errors) {}
+      steps_(views_, options.errors, options.extended_descriptions) {}
 
 Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion criterion) const {
   const std::size_t n = workspace_.objects.size();
@@ -57,6 +57,7 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
   // of D = 0 no longer wins whatever its U.
   graph.set_ratio_offset(views_.window().side);
   std::vector<std::uint32_t> sources;
+  sources.reserve(kCorners.size());
   for (const Corner c : kCorners) sources.push_back(Placement{start, c}.node());
   const std::uint32_t targets[] = {goal_node};
   const auto path = plan_path(graph, sources, targets, criterion);
@@ -111,6 +112,12 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
 }
 
 std::string_view step_description(const Step& s) {
+  if (s.seek == Description::Far || s.seek == Description::Near) {
+    const bool far = s.seek == Description::Far;
+    if (!s.slide) return far ? "FAR" : "NEAR";
+    if (*s.slide == Direction::positive) return far ? "TRAJP-FAR" : "TRAJP-NEAR";
+    return far ? "TRAJN-FAR" : "TRAJN-NEAR";
+  }
   if (s.slide) return *s.slide == Direction::positive ? "TRAJP" : "TRAJN";
   return s.seek == Description::Obvious ? "OBVIOUS" : "ISOL";
 }
@@ -135,12 +142,12 @@ double step_cost(CostCriterion criterion, const RouteStep& rs) {
 }  // namespace
 
 std::string route_table(const Route& route) {
-  std::string out = fmt::format("{:>6} {:>6} {:<7} {:>9} {:>8} {:>9}  {}\n", "FROM", "TO", "DESC", "DISTANCE", "UNPROB",
-                                "COST", "VERIFICATION");
+  std::string out = fmt::format("{:>6} {:>6} {:<10} {:>9} {:>8} {:>9}  {}\n", "FROM", "TO", "DESC", "DISTANCE",
+                                "UNPROB", "COST", "VERIFICATION");
   for (const RouteStep& rs : route.steps) {
     const Step& s = rs.step;
     const std::string_view desc = step_description(s);
-    out += fmt::format("{:>6} {:>6} {:<7} {:>9.3f} {:>8.3f} {:>9.3f}  {}\n", s.from.object, s.landmark, desc,
+    out += fmt::format("{:>6} {:>6} {:<10} {:>9.3f} {:>8.3f} {:>9.3f}  {}\n", s.from.object, s.landmark, desc,
                        rs.distance, s.unreliability(), step_cost(route.criterion, rs), verification_line(rs.check));
   }
   out += fmt::format("total: D {:.3f} mm, U {:.3f}, D/R {:.3f}, landmark-based distance {:.3f} mm, {} steps\n",

@@ -26,6 +26,9 @@ struct MapMakerOptions {
   /// survey's and the navigator's position errors). Verification and recovery rules then hold
   /// whichever side it falls (check_step). 0: the map-maker's positions are taken as exact.
   double border_tolerance = 0;
+  /// Describe landmarks as Far and Near too (the objects in view farthest from and nearest to the
+  /// reference) beside the paper's Obvious and Isol (docs/navigation.md, "Descriptions").
+  bool extended_descriptions = true;
 };
 
 struct RouteStep {
@@ -80,7 +83,8 @@ class MapMaker {
   StepTable steps_;
 };
 
-/// A step's kind as the route table names it: TRAJP, TRAJN, OBVIOUS or ISOL.
+/// A step's kind as the route table names it: TRAJP, TRAJN, OBVIOUS or ISOL; FAR and NEAR, and
+/// TRAJP-FAR, TRAJN-NEAR and so on, for the extended descriptions.
 std::string_view step_description(const Step& step);
 
 /// The human table of a route, like the paper's Fig. 30: from, to, description, distance,

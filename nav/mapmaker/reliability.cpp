@@ -26,7 +26,7 @@ constexpr double kFittedBeta = 1.075169;
 constexpr double kFittedGamma = 1.011016;
 
 // scripts/fit_recovery_credit.py on `neopipe nav --trials` runs (docs/navigation.md says which).
-constexpr double kRecoveredShare = 0.74;
+constexpr double kRecoveredShare = 0.60;
 
 struct OffsetBound {
   double slide;  ///< where along the slide
@@ -106,6 +106,58 @@ SelectionReliabilityModel fitted_selection_model() {
 
 double selection_reliability(int visible, double sigma, double window_side) {
   return fitted_selection_model()(visible, sigma / window_side);
+}
+
+double distance_rank_reliability(const WorldViews& views, const Placement& from, Description description,
+                                 double sigma) {
+  const auto chosen = views.landmark(from, description);
+  if (!chosen || !(sigma > 0)) return 1.0;
+  const double sign = description == Description::Near ? -1.0 : 1.0;  // which way the others must stay
+  const Eigen::Vector2d& reference = views.position(from.object);
+  const Eigen::Vector2d to_chosen = views.position(*chosen) - reference;
+  const Eigen::Vector2d u_chosen = to_chosen.normalized();
+  const double a = views.window().side;
+  const Eigen::Vector2d origin = views.origin(from);
+  const double reach = kReach * std::numbers::sqrt2 * sigma;
+  struct Object {
+    Eigen::Vector2d at;  ///< in the surveyed window
+    Eigen::Vector2d u;   ///< unit vector from the reference
+    double gap;          ///< how much farther the landmark is than this object, on the survey
+  };
+  std::vector<Object> rivals;
+  const Eigen::Vector2d widen(reach, reach);
+  views.grid().for_each_near(origin - widen, origin + Eigen::Vector2d(a, a) + widen, [&](std::uint32_t id) {
+    if (id == from.object || id == *chosen) return;
+    const Eigen::Vector2d q = views.position(id) - origin;
+    if (std::min({q.x(), a - q.x(), q.y(), a - q.y()}) <= -reach) return;
+    const Eigen::Vector2d to_rival = views.position(id) - reference;
+    rivals.push_back({q, to_rival.normalized(), to_chosen.norm() - to_rival.norm()});
+  });
+  // The reference's error e_r moves the window and every distance at once, so the events "rival j
+  // is in view and beats the landmark" go together: they are independent only given e_r, which is
+  // integrated over. Given e_r, an object is in view when its own error keeps it inside all four
+  // edges (one past a corner must cross two), and the gap to rival j, moved by (u_j - u_t).e_r, is
+  // off by u_t.e_t - u_j.e_j, sd sqrt 2 sigma.
+  static const NormalQuadrature quadrature = normal_quadrature(kCoarseNodes);
+  const auto in_view = [&](const Eigen::Vector2d& q) {
+    return normal_cdf(q.x() / sigma) * normal_cdf((a - q.x()) / sigma) * normal_cdf(q.y() / sigma) *
+           normal_cdf((a - q.y()) / sigma);
+  };
+  const double gap_sd = std::numbers::sqrt2 * sigma;
+  const Eigen::Vector2d chosen_at = views.position(*chosen) - origin;
+  double held = 0;
+  for (std::size_t i = 0; i < quadrature.nodes.size(); ++i) {
+    for (std::size_t k = 0; k < quadrature.nodes.size(); ++k) {
+      const Eigen::Vector2d e_r = sigma * Eigen::Vector2d(quadrature.nodes[i], quadrature.nodes[k]);
+      double clear = in_view(chosen_at - e_r);  // the landmark itself stays in view
+      for (const Object& j : rivals) {
+        const double gap = j.gap + (j.u - u_chosen).dot(e_r);
+        clear *= 1 - in_view(j.at - e_r) * normal_cdf(-sign * gap / gap_sd);
+      }
+      held += quadrature.weights[i] * quadrature.weights[k] * clear;
+    }
+  }
+  return std::min(held, 1.0);  // the weights sum to 1 only up to rounding
 }
 
 double trajectory_reliability(const WorldViews& views, const Trajectory& trajectory, const NavigatorErrors& errors) {

@@ -17,8 +17,9 @@ namespace neopipe::nav::mapmaker {
 /// its map's QOC rules, the next candidate when a later entry leads nowhere, the views its margin
 /// explains (nav/navigator/follow.cpp). A step rated R on its first try is forecast to cost the
 /// journey nothing with 1 - (1 - share) (1 - R). One share for every kind of step: fitted to the
-/// rig's Monte Carlo of the real navigator, per kind the fit did not improve (docs/navigation.md,
-/// "Recovery credit"). 0 for a navigator that does not recover.
+/// rig's Monte Carlo of the real navigator; shares per kind differ from one half of the surveys to
+/// the other more than between kinds (docs/navigation.md, "Recovery credit"). 0 for a navigator that
+/// does not recover.
 struct RecoveryCredit {
   double share = 0;
   /// The published fit (scripts/fit_recovery_credit.py; docs/navigation.md).
@@ -56,6 +57,17 @@ SelectionReliabilityModel fitted_selection_model();
 /// per-axis error `sigma` in a window of side `window_side`, picks the same isolated landmark as the
 /// error-free selection. 1 for `visible` <= 2 (one candidate) or sigma 0.
 double selection_reliability(int visible, double sigma, double window_side);
+
+/// Probability that the navigator, measuring the view at `from` with per-axis error `sigma`, takes
+/// the same farthest (Description::Far) or nearest (Near) object as the map-maker. The landmark must
+/// stay in view, and no other object may both be in view and beat it: the difference of two
+/// distances d_t - d_j is off by u_t.(e_t - e_r) - u_j.(e_j - e_r), u the unit vectors from the
+/// reference, and an object just outside the window that may come into view counts as a rival (a
+/// joint event view_agreement, which judges flips on the map-maker's positions, cannot see). The
+/// reference's error e_r, shared by every rival, is integrated over; given it, the rivals are
+/// independent. Agrees with the Monte Carlo to 0.01 (tests/nav/test_reliability.cpp). 1 with nothing
+/// selected or sigma 0. Includes the view's agreement for these descriptions.
+double distance_rank_reliability(const WorldViews& views, const Placement& from, Description description, double sigma);
 
 /// Probability that the first object to enter the navigator's sliding window is `trajectory.to`.
 ///

@@ -11,8 +11,8 @@ double Step::unreliability() const {
   return reliability >= 1 ? 0.0 : -std::log(std::max(reliability, 1e-300));
 }
 
-StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
-  const std::uint32_t nodes = static_cast<std::uint32_t>(4 * views.object_count());
+StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors, bool extended) {
+  const auto nodes = static_cast<std::uint32_t>(4 * views.object_count());
   first_.reserve(nodes + 1);
   first_.push_back(0);
   std::vector<Step> group;
@@ -31,10 +31,19 @@ StepTable::StepTable(const WorldViews& views, const NavigatorErrors& errors) {
       }
     };
     const bool obvious = views.obvious(from).has_value();
-    const Description seek = obvious ? Description::Obvious : Description::Isol;
-    const double selection = selection_reliability(visible, errors.sigma, views.window().side) *
-                             view_agreement(views, from, seek, errors.sigma);
-    if (const auto landmark = views.landmark(from, seek)) {
+    const Description primary = obvious ? Description::Obvious : Description::Isol;
+    const auto landmark_of_primary = views.landmark(from, primary);
+    for (const Description seek : {primary, Description::Far, Description::Near}) {
+      const auto landmark = views.landmark(from, seek);
+      if (!landmark) continue;
+      // Far and Near only where they name an object no earlier description does.
+      if (seek != primary) {
+        if (!extended || obvious || landmark == landmark_of_primary) continue;
+        if (seek == Description::Near && landmark == views.landmark(from, Description::Far)) continue;
+      }
+      const double selection = seek == primary ? selection_reliability(visible, errors.sigma, views.window().side) *
+                                                     view_agreement(views, from, seek, errors.sigma)
+                                               : distance_rank_reliability(views, from, seek, errors.sigma);
       Step s;
       s.from = from;
       s.landmark = s.via = *landmark;

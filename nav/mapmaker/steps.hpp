@@ -42,7 +42,9 @@ struct Step {
 /// before trajectory, Trajp before Trajn, corners SE, SW, NE, NW.
 class StepTable {
  public:
-  StepTable(const WorldViews& views, const NavigatorErrors& errors);
+  /// extended: also the steps whose landmark is described as Far or Near, where they name another
+  /// object than the paper's description does (docs/navigation.md, "Descriptions").
+  StepTable(const WorldViews& views, const NavigatorErrors& errors, bool extended = false);
 
   const std::vector<Step>& steps() const { return steps_; }
   /// Indices into steps() of the steps leaving `node`.

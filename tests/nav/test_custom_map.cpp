@@ -44,7 +44,7 @@ TEST(CustomMap, RandomMapsRoundTrip) {
     const int n = static_cast<int>(rng() % 6);
     for (int i = 0; i < n; ++i) {
       MapEntry e;
-      e.seek = static_cast<Description>(rng() % 3);
+      e.seek = static_cast<Description>(rng() % 5);
       if (rng() % 3 == 0) {
         e.slide = rng() % 2 ? Direction::positive : Direction::negative;
         if (rng() % 2) e.slide_limit = 1 + static_cast<double>(rng() % 500);
@@ -54,7 +54,7 @@ TEST(CustomMap, RandomMapsRoundTrip) {
         RecoveryRule rule{static_cast<int>(rng() % 5), std::nullopt, Description::Isol};
         if (rng() % 4) {
           rule.corner = kCorners[rng() % 4];
-          rule.seek = static_cast<Description>(rng() % 3);
+          rule.seek = static_cast<Description>(rng() % 5);
         } else {
           rule.only_in_doubt = rng() % 2 == 0;
         }
@@ -96,7 +96,7 @@ TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
   EXPECT_EQ(message("((Isol, (2, XX), SW))"),
             "custom map: at character 15: expected a corner (SE, SW, NE, NW), - or ?, found 'XX'");
   EXPECT_EQ(message("((Isle, SW))"),
-            "custom map: at character 7: expected a description (Obvious, Isol or *), found 'Isle'");
+            "custom map: at character 7: expected a description (Obvious, Isol, Far, Near or *), found 'Isle'");
   EXPECT_EQ(message("((Isol, (7, SW, Isol), SW))"), "custom map: at character 11: expected a QOC 0..4, found '7'");
   EXPECT_EQ(message("((Isol, SW)"), "custom map: at character 12: expected ')', found 'the end'");
   EXPECT_EQ(message("((Isol, SW)) extra"), "custom map: at character 14: expected end of the map, found 'e'");

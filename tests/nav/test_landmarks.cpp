@@ -67,6 +67,36 @@ TEST(Landmarks, SelectionIsInvariantToTranslationAsTheNavigatorSeesWindowCoordin
   }
 }
 
+// The extended language (docs/navigation.md, "Descriptions"): Far is the paper's preferred object,
+// Near the nearest to the reference, and the ranking behind each is its list of fallbacks.
+TEST(Landmarks, FarAndNearRankByDistanceFromTheReference) {
+  const std::vector<Vector2d> points{{0, 0}, {5, 0}, {0, 12}, {20, 1}, {3, -2}};
+  const View view{points, 0};
+  EXPECT_EQ(select_landmark(Description::Far, view), 3u);
+  EXPECT_EQ(select_landmark(Description::Far, view), select_landmark(Description::Any, view));
+  EXPECT_EQ(select_landmark(Description::Near, view), 4u);
+  EXPECT_EQ(ranked_landmarks(Description::Far, view), (std::vector<std::size_t>{3, 2, 1, 4}));
+  EXPECT_EQ(ranked_landmarks(Description::Near, view), (std::vector<std::size_t>{4, 1, 2, 3}));
+  // Equally near: the larger x, then the larger y, as for Far's ties.
+  const std::vector<Vector2d> ring{{0, 0}, {-5, 0}, {0, 5}, {5, 0}, {0, -5}};
+  EXPECT_EQ(ranked_landmarks(Description::Near, {ring, 0}), (std::vector<std::size_t>{3, 2, 4, 1}));
+  // Nothing but the reference: nothing to select.
+  const std::vector<Vector2d> alone{{0, 0}};
+  EXPECT_FALSE(select_landmark(Description::Near, {alone, 0}));
+  EXPECT_FALSE(select_landmark(Description::Far, {alone, 0}));
+}
+
+TEST(Landmarks, DescriptionNamesRoundTrip) {
+  for (const Description d :
+       {Description::Obvious, Description::Isol, Description::Any, Description::Far, Description::Near}) {
+    EXPECT_EQ(parse_description(description_name(d)), d);
+  }
+  EXPECT_EQ(description_name(Description::Far), "Far");
+  EXPECT_EQ(description_name(Description::Near), "Near");
+  EXPECT_FALSE(parse_description("near"));
+  EXPECT_FALSE(parse_description("Farthest"));
+}
+
 TEST(Window, CornerPlacementsHoldTheLandmarkInsetByTheMargin) {
   const WindowModel w = WindowModel::with_side(50);
   EXPECT_DOUBLE_EQ(w.margin, 2.5);

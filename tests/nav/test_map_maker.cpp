@@ -99,6 +99,54 @@ TEST(MapMaker, RoutesReplayToTheGoalWithTheirDistanceOnRandomWorlds) {
   std::cout << routes << " routes replayed, " << unreachable << " unreachable\n";
 }
 
+// The extended descriptions (docs/navigation.md, "Descriptions") add steps and take none away: a
+// Far or Near step names another object than the paper's description at its placement, and the most
+// reliable route can only be as reliable or more.
+TEST(MapMaker, FarAndNearStepsExtendThePapersAndNeverMakeTheBestRouteWorse) {
+  const Workspace w = random_workspace(120, 400, 5, 6);
+  const WorldViews views(w, WindowModel{});
+  const NavigatorErrors errors;
+  const StepTable paper(views, errors, false);
+  const StepTable extended(views, errors, true);
+  const auto is_extension = [](const Step& s) { return s.seek == Description::Far || s.seek == Description::Near; };
+  int added = 0;
+  for (const Step& s : paper.steps()) EXPECT_FALSE(is_extension(s));
+  for (const Step& s : extended.steps()) {
+    if (!is_extension(s)) continue;
+    ++added;
+    EXPECT_EQ(views.landmark(s.from, s.seek), s.via);
+    const auto primary = views.obvious(s.from) ? views.obvious(s.from) : views.isolated(s.from);
+    EXPECT_NE(primary, s.via) << "a Far or Near step that names the paper's landmark adds nothing";
+    EXPECT_GT(s.reliability, 0);
+    EXPECT_LE(s.reliability, 1);
+  }
+  EXPECT_EQ(extended.steps().size() - static_cast<std::size_t>(added), paper.steps().size());
+  EXPECT_GT(added, 100);
+
+  MapMakerOptions with;
+  with.errors.sigma = 1.5;
+  MapMakerOptions without = with;
+  without.extended_descriptions = false;
+  const MapMaker rich(w, with);
+  const MapMaker plain(w, without);
+  int compared = 0;
+  int better = 0;
+  for (std::uint32_t a = 0; a < 120; a += 5) {
+    const std::uint32_t b = (a * 53 + 17) % 120;
+    if (a == b) continue;
+    try {
+      const Route r = rich.plan(a, b, CostCriterion::reliability);
+      const Route p = plain.plan(a, b, CostCriterion::reliability);
+      EXPECT_LE(r.unreliability, p.unreliability + 1e-12) << a << "->" << b;
+      better += r.unreliability < p.unreliability - 1e-9 ? 1 : 0;
+      ++compared;
+    } catch (const UnreachableGoal&) {
+    }
+  }
+  EXPECT_GT(compared, 10);
+  EXPECT_GT(better, 0) << "the extension never helped";
+}
+
 TEST(MapMaker, TheThreeCriteriaOrderAsThePaperFinds) {
   const MapMaker maker(random_workspace(150, 400, 42, 6), MapMakerOptions{});
   int compared = 0;
