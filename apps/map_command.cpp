@@ -125,6 +125,8 @@ double sigma_of(const MapArgs& a) {
 
 const char* kind_of(const mm::Step& s) {
   if (s.slide) return "trajectory";
+  if (s.seek == nav::Description::Far) return "far";
+  if (s.seek == nav::Description::Near) return "near";
   return s.seek == nav::Description::Obvious ? "obvious" : "isolated";
 }
 
@@ -147,6 +149,7 @@ json route_json(const mm::Route& route) {
     if (s.slide) {
       step["via"] = s.via;
       step["dir"] = nav::direction_name(*s.slide);
+      step["via_description"] = nav::description_name(s.seek);
     }
     path.push_back(step);
   }
@@ -180,7 +183,12 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
   cmd->add_option("--calib", a.calib, "Calibration file (neopipe calibrate): sigma = its held-out sd");
   cmd->add_option("--border-tolerance", a.border_tolerance,
                   "mm: objects this close to a quadrant border may fall either side; verification and recovery "
-                  "rules hold both ways (neopipe nav uses 3 sqrt(2) sigma + 0.25)")
+                  "rules hold both ways (neopipe nav uses 3 sqrt(2) sigma + 0.65)")
+      ->capture_default_str();
+  cmd->add_option("--descriptions", a.descriptions,
+                  "paper: describe landmarks as the paper does (Obvious, Isol); extended: also Far and Near, the "
+                  "objects in view farthest from and nearest to the reference")
+      ->check(CLI::IsMember({"paper", "extended"}))
       ->capture_default_str();
   cmd->add_option("--move-error", a.move_error, "Navigator's across-track error, sd mm per mm moved")
       ->capture_default_str();
@@ -224,6 +232,7 @@ int map_command(const MapArgs& a) {
   if (!(a.border_tolerance >= 0) || !std::isfinite(a.border_tolerance))
     throw UsageError{fmt::format("--border-tolerance {}: must be >= 0 mm", a.border_tolerance)};
   options.border_tolerance = a.border_tolerance;
+  options.extended_descriptions = a.descriptions == "extended";
   options.errors.translation_per_mm = a.move_error;
   options.errors.rotation_per_mm = a.rotation_error * std::numbers::pi / 180;
   const mm::MapMaker maker(std::move(workspace), options);
@@ -250,6 +259,7 @@ int map_command(const MapArgs& a) {
   const mm::QualifiedParkways qualified =
       mm::qualify_parkways(mm::parkway_edge_qualities(views, options.errors), a.reliable_threshold);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(isolated.size() + trajectories.size());
   for (const mm::ParkwayEdge& e : isolated) edges.emplace_back(e.from, e.to);
   const std::size_t scc_parkways = mm::strongly_connected_components(views.object_count(), edges).size();
   for (const mm::Trajectory& t : trajectories) edges.emplace_back(t.from.object, t.to);
@@ -262,6 +272,7 @@ int map_command(const MapArgs& a) {
     j["window"] = {{"side", options.window.side}, {"margin", options.window.margin}};
     j["sigma"] = options.errors.sigma;
     j["border_tolerance"] = options.border_tolerance;
+    j["descriptions"] = a.descriptions;
     j["positions"] = json::array();
     for (std::uint32_t i = 0; i < views.object_count(); ++i) {
       j["positions"].push_back({views.position(i).x(), views.position(i).y()});

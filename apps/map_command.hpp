@@ -17,9 +17,10 @@ struct MapArgs {
   std::optional<double> margin;
   std::optional<double> sigma;
   double border_tolerance = 0;
-  std::string calib;              ///< σ from its held-out error
-  double move_error = 0.003;      ///< across-track sd per mm moved
-  double rotation_error = 0.002;  ///< heading sd, degrees per mm moved
+  std::string descriptions = "extended";  ///< paper | extended
+  std::string calib;                      ///< σ from its held-out error
+  double move_error = 0.003;              ///< across-track sd per mm moved
+  double rotation_error = 0.002;          ///< heading sd, degrees per mm moved
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
   std::string cost = "ratio";

@@ -78,6 +78,7 @@ Setup make_setup(const NavArgs& a) {
   config.arm = {a.sigma_move, a.sigma_rot};
   config.recovery = !a.no_recovery;
   config.track_heading = a.navigator == "tracking";
+  config.extended_descriptions = a.descriptions == "extended";
   config.min_reliability = a.min_reliability;
   config.seed = a.seed;
   config.realism = realism;
@@ -356,6 +357,7 @@ int trials(const NavArgs& a, const Setup& s) {
                     {"window", a.window},
                     {"recovery", !a.no_recovery},
                     {"navigator", a.navigator},
+                    {"descriptions", a.descriptions},
                     {"seed", a.seed},
                     {"journeys", journeys}};
     std::cout << j.dump() << '\n';
@@ -429,6 +431,11 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "tracking: the window's heading is dead-reckoned from marbles tracked across moves (an extension); "
                   "paper: no compass and no such memory, as the paper's navigator")
       ->check(CLI::IsMember({"tracking", "paper"}))
+      ->capture_default_str();
+  cmd->add_option("--descriptions", a.descriptions,
+                  "paper: the map describes landmarks as the paper does (Obvious, Isol); extended: also Far and "
+                  "Near, the objects in view farthest from and nearest to the reference")
+      ->check(CLI::IsMember({"paper", "extended"}))
       ->capture_default_str();
   cmd->add_option("--window", a.window, "View window side a, mm")->capture_default_str();
   cmd->add_option("--threads", a.threads, "Journeys run in parallel on this many threads (0: all cores)")

@@ -28,10 +28,11 @@ struct NavArgs {
   std::optional<std::int64_t> trials;
   std::optional<std::int64_t> as_trial;
   bool no_recovery = false;
-  std::string navigator = "tracking";  ///< tracking | paper
-  double min_reliability = 0;          ///< refuse routes forecast below this
-  std::string diagram;                 ///< --reliability-diagram PNG
-  std::string survey_csv;              ///< --survey-csv: what the map-maker believes, beside the truth
+  std::string navigator = "tracking";     ///< tracking | paper
+  std::string descriptions = "extended";  ///< paper | extended
+  double min_reliability = 0;             ///< refuse routes forecast below this
+  std::string diagram;                    ///< --reliability-diagram PNG
+  std::string survey_csv;                 ///< --survey-csv: what the map-maker believes, beside the truth
   double window = 50;
   int threads = 0;
   bool json = false;

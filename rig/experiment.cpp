@@ -33,10 +33,13 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
   s.map.errors.sigma = std::hypot(survey_sigma, nav::navigator::NavigatorConfig{}.adjust_tolerance / 2);
   // Where the survey and the world may disagree about which side of a border an object lies: 3 sd
   // of two objects' relative survey error, plus the navigator's own error on marbles the image border
-  // cuts. The map-maker keeps its verification and recovery rules clear of that band; the navigator
-  // uses the same band to explain a QOC or a view that differs from the map's.
-  const double border_band = 3 * std::sqrt(2.0) * survey_sigma + kNavigatorBorderError;
+  // cuts, plus where it holds its window (a landmark is held anywhere within the adjust tolerance of
+  // its corner). The map-maker keeps its verification and recovery rules clear of that band; the
+  // navigator uses the same band to explain a QOC or a view that differs from the map's.
+  const double border_band =
+      3 * std::sqrt(2.0) * survey_sigma + kNavigatorBorderError + nav::navigator::NavigatorConfig{}.adjust_tolerance;
   s.map.border_tolerance = border_band;
+  s.map.extended_descriptions = c.extended_descriptions;
   s.map.errors.translation_per_mm = c.arm.sigma_move;
   s.map.errors.rotation_per_mm = c.arm.sigma_rot * std::numbers::pi / 180;
   // The map-maker rates its steps with what this navigator recovers from (nothing without recovery).

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -71,6 +72,34 @@ TEST_F(MapCli, JsonHasParkwaysQocTrajectoriesAndARoute) {
     ++routes;
   }
   EXPECT_GT(routes, 0);
+}
+
+// --descriptions paper keeps to Obvious and Isol; extended (the default) may describe a landmark as
+// Far or Near, in the path's kinds and in a trajectory's via_description, and says which it used.
+TEST_F(MapCli, DescriptionsPaperOrExtended) {
+  make_world(150, 2);
+  std::map<std::string, int> kinds[2];
+  const std::array<std::string, 2> names{"paper", "extended"};
+  for (std::size_t d = 0; d < 2; ++d) {
+    for (int to = 1; to < 150; to += 9) {
+      const auto r = run_neopipe({"map", "--world", file("w.yaml"), "--json", "--from", "0", "--to", std::to_string(to),
+                                  "--cost", "reliability", "--sigma", "1.5", "--descriptions", names[d]});
+      if (r.exit_code == 3) continue;
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const json j = json::parse(r.out);
+      EXPECT_EQ(j["descriptions"], names[d]);
+      for (const auto& step : j["path"]) {
+        ++kinds[d][step["kind"].get<std::string>()];
+        if (step.contains("via_description")) ++kinds[d]["via " + step["via_description"].get<std::string>()];
+      }
+      const auto parsed = neopipe::nav::parse_custom_map(j["custom_map_text"].get<std::string>());
+      EXPECT_EQ(parsed.entries.size(), j["custom_map"].size());
+    }
+  }
+  for (const char* k : {"far", "near", "via Far", "via Near"}) EXPECT_EQ(kinds[0].count(k), 0U) << k;
+  EXPECT_GT(kinds[1]["far"] + kinds[1]["near"] + kinds[1]["via Far"] + kinds[1]["via Near"], 0);
+  EXPECT_TRUE(
+      one_error_line(run_neopipe({"map", "--world", file("w.yaml"), "--descriptions", "fancy"}), "--descriptions"));
 }
 
 TEST_F(MapCli, TextReportTableAndPlots) {

@@ -68,6 +68,7 @@ TEST_F(NavCli, HelpNamesTheOptions) {
                              "--min-reliability",
                              "--navigator",
                              "--as-trial",
+                             "--descriptions",
                              "--reliability-diagram"}) {
     EXPECT_NE(r.out.find(option), std::string::npos) << option;
   }
@@ -305,6 +306,23 @@ TEST_F(NavCli, RefusalsReplaysDiagramsAndThePapersNavigator) {
       run_neopipe({"nav", "--world", world, "--trials", "5", "--sigma-map", "0.25", "--navigator", "paper", "--json"});
   ASSERT_EQ(paper.exit_code, 0) << paper.err;
   EXPECT_EQ(json::parse(paper.out)["navigator"], "paper");
+
+  // The paper's descriptions only: no journey's steps are Far or Near.
+  const auto papers_map = run_neopipe(
+      {"nav", "--world", world, "--trials", "20", "--sigma-map", "1.5", "--descriptions", "paper", "--json"});
+  ASSERT_EQ(papers_map.exit_code, 0) << papers_map.err;
+  const json pm = json::parse(papers_map.out);
+  EXPECT_EQ(pm["descriptions"], "paper");
+  for (const auto& journey : pm["journeys"]) {
+    for (const auto& step : journey["steps"]) {
+      const std::string name = step["step"];
+      EXPECT_EQ(name.find("FAR"), std::string::npos) << name;
+      EXPECT_EQ(name.find("NEAR"), std::string::npos) << name;
+    }
+  }
+  EXPECT_EQ(j["descriptions"], "extended");
+  EXPECT_TRUE(one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--descriptions", "all"}),
+                             "--descriptions"));
 
   EXPECT_TRUE(
       one_error_line(run_neopipe({"nav", "--world", world, "--trials", "2", "--navigator", "compass"}), "--navigator"));

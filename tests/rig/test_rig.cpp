@@ -172,11 +172,15 @@ TEST(Rig, ExperimentSettingsComeFromTheSurveyAndTheArm) {
   c.recovery = false;
   c.seed = 9;
   const rig::ExperimentSettings s = rig::derive_settings(c, 1.0);
+  c.extended_descriptions = false;
+  EXPECT_FALSE(rig::derive_settings(c, 1.0).map.extended_descriptions);
   EXPECT_EQ(s.map.window.side, 40);
   EXPECT_EQ(s.navigator.window.side, 40);
   EXPECT_NEAR(s.map.errors.sigma, std::hypot(1.0, 0.2), 1e-12);
-  EXPECT_NEAR(s.map.border_tolerance, 3 * std::sqrt(2.0) + rig::kNavigatorBorderError, 1e-12);
+  // 3 sd of two objects' relative survey error, the navigator's border error and its adjust tolerance
+  EXPECT_NEAR(s.map.border_tolerance, 3 * std::sqrt(2.0) + rig::kNavigatorBorderError + 0.4, 1e-12);
   EXPECT_EQ(s.navigator.view_margin, s.map.border_tolerance);
+  EXPECT_TRUE(s.map.extended_descriptions);
   EXPECT_FALSE(s.navigator.recovery);
   EXPECT_EQ(s.journey.errors.sigma_move, 0.004);
   EXPECT_EQ(s.journey.seed, 9U);
@@ -238,7 +242,7 @@ TEST(Rig, PublishedTrialsPathRunsThroughTheLibrary) {
 // are the very journeys of a run without it (same pairs, same noise).
 TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
   const SmallTrials free(1.5, mm::CostCriterion::ratio, 16);
-  const SmallTrials strict(1.5, mm::CostCriterion::ratio, 16, 0.9);
+  const SmallTrials strict(1.5, mm::CostCriterion::ratio, 16, 0.97);
   const auto& free_plans = free.plans;
   const auto& strict_plans = strict.plans;
   ASSERT_EQ(strict_plans.size(), free_plans.size());
@@ -248,10 +252,10 @@ TEST(Rig, RoutesForecastBelowTheLeastReliabilityAreRefusedAndCountedApart) {
     EXPECT_EQ(p.start, free_plans[i]->start);
     if (!p.refused.empty()) {
       ++refused;
-      EXPECT_LT(p.planned_reliability, 0.9);
+      EXPECT_LT(p.planned_reliability, 0.97);
       EXPECT_NE(p.refused.find("reliable enough"), std::string::npos) << p.refused;
     } else {
-      EXPECT_GE(p.planned_reliability, 0.9);  // the criterion's route, or else the most reliable one
+      EXPECT_GE(p.planned_reliability, 0.97);  // the criterion's route, or else the most reliable one
     }
   }
   ASSERT_GT(refused, 0) << "the test needs routes below the level";

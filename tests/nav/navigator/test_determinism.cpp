@@ -22,6 +22,9 @@ using test_rig::RigOptions;
 mapmaker::MapMakerOptions map_options() {
   mapmaker::MapMakerOptions o;
   o.window = WindowModel::with_side(50);
+  // The band the navigator explains a view in (its view margin): checks the map-maker places closer
+  // to a border than that are ones the navigator may see either way, as `neopipe nav` pairs them.
+  o.border_tolerance = NavigatorConfig{}.view_margin;
   return o;
 }
 
@@ -128,8 +131,8 @@ TEST(Throughput, DefaultSparseWorld) {
   // tests/rig/test_navigation_rates.cpp (1,000 and more journeys); here 45 journeys only say that
   // nothing broke: more than two misses is a fall no noise explains.
   EXPECT_GE(at_goal, journeys - 2);
-  // The target is 1,000 frames/s; the bound is lower so a loaded machine does not fail the suite.
-  EXPECT_GT(rate, 300);
+  // The frame rate is recorded, not asserted: no timed assertions in tests (neopipe bench and
+  // docs/ measure it against a peer in the same run).
 }
 
 }  // namespace
