@@ -6,8 +6,8 @@ A step rated R on its first try (the planner's R, each journey's "steps" in the 
 cost the journey nothing with 1 - (1 - share) (1 - R): the navigator catches and undoes that share
 of the step's mistakes. The share maximises the likelihood of the journeys' outcomes (reached the
 goal or not) under the forecast, the product over their steps; a grid of 0.01 is fine enough. With
---by-kind a share per kind of step (OBVIOUS, ISOL, TRAJ) is fitted too, to see whether one share is
-enough. Standard library only. Usage:
+--by-kind a share per kind of step (OBVIOUS, ISOL, FAR, NEAR, and TRAJ for every slide) is fitted
+too, and the reports use it. Standard library only. Usage:
 
     scripts/fit_recovery_credit.py --fit RUN.json ... [--check RUN.json ...] [--by-kind]
 """
@@ -17,6 +17,12 @@ import json
 import math
 
 
+def kind_of(step):
+    """"TRAJN-NEAR 4 -> 7" -> TRAJ; "NEAR 4 -> 7" -> NEAR: trajectories as one kind, whatever their via."""
+    name = step.split()[0]
+    return "TRAJ" if name.startswith("TRAJ") else name
+
+
 def journeys(paths):
     out = []
     for path in paths:
@@ -24,8 +30,7 @@ def journeys(paths):
             for x in json.load(f)["journeys"]:
                 if x["outcome"] == "refused":
                     continue
-                kinds = [(s["R"], s["step"].split()[0].replace("TRAJP", "TRAJ").replace("TRAJN", "TRAJ"))
-                         for s in x["steps"]]
+                kinds = [(s["R"], kind_of(s["step"])) for s in x["steps"]]
                 out.append((kinds, x["outcome"].startswith("success")))
     return out
 
@@ -84,14 +89,17 @@ def main():
     print(f"one share: {share:.2f} (log-likelihood {log_likelihood(data, share):.1f}, "
           f"without credit {log_likelihood(data, 0.0):.1f})")
     if args.by_kind:
-        kinds = {"OBVIOUS": share, "ISOL": share, "TRAJ": share}
+        kinds = {k: share for k in sorted({kind for steps, _ in data for _, kind in steps})}
         for _ in range(3):
             for k in kinds:
                 kinds[k] = max(GRID, key=lambda s: log_likelihood(data, {**kinds, k: s}))
         print(f"by kind: {kinds} (log-likelihood {log_likelihood(data, kinds):.1f})")
-    report("fitted on", data, share)
+    credit = kinds if args.by_kind else share
+    report("fitted on", data, credit)
     for path in args.check:
-        report(path, journeys([path]), share)
+        report(path, journeys([path]), credit)
+    if args.check and len(args.check) > 1:
+        report("all held out", journeys(args.check), credit)
 
 
 if __name__ == "__main__":

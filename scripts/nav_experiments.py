@@ -17,6 +17,7 @@ import hashlib
 import json
 import math
 import os
+import shlex
 import subprocess
 import sys
 import time
@@ -37,11 +38,18 @@ def world(args, objects, seed):
     return path
 
 
-def nav(args, world_path, *extra, trials=None, fresh=False, binary=None):
+def has_baseline(args):
+    return bool(args.baseline or args.baseline_args)
+
+
+def nav(args, world_path, *extra, trials=None, fresh=False, baseline=False):
     """One run's JSON. Runs are kept in the output folder, keyed by the command and the program's
     build, so that tables sharing a run (the paired comparisons) do not run it twice; `fresh` (the
-    throughput) always runs. `binary`: another neopipe (a baseline build) instead of --neopipe."""
-    program = binary or args.neopipe
+    throughput) always runs. `baseline`: the run of the baseline (--baseline's build, else --neopipe,
+    with --baseline-args)."""
+    program = (args.baseline or args.neopipe) if baseline else args.neopipe
+    if baseline:
+        extra = (*extra, *shlex.split(args.baseline_args or ""))
     cmd = [program, "nav", "--world", world_path, "--trials", str(trials or args.trials), "--json", *extra]
     key = hashlib.sha1((" ".join(cmd) + str(os.path.getmtime(program))).encode()).hexdigest()[:16]
     cached = os.path.join(args.out, f"run-{key}.json")
@@ -70,10 +78,20 @@ def reached(journey):
 
 
 def paired(a, b):
+    """Journeys that reach the goal in one run and not the other, over the journeys both ran: the same
+    start and goal, matched in order. Runs whose maps reach different pairs (a baseline that
+    describes less) draw different pairs after the first that one cannot reach; those are left out."""
     ja, jb = a["journeys"], b["journeys"]
-    assert [(x["from"], x["to"]) for x in ja] == [(x["from"], x["to"]) for x in jb], "not the same journeys"
-    a_only = sum(reached(x) and not reached(y) for x, y in zip(ja, jb))
-    b_only = sum(reached(y) and not reached(x) for x, y in zip(ja, jb))
+    by_pair = {}
+    for y in jb:
+        by_pair.setdefault((y["from"], y["to"]), []).append(y)
+    pairs = []
+    for x in ja:
+        ys = by_pair.get((x["from"], x["to"]))
+        if ys:
+            pairs.append((x, ys.pop(0)))
+    a_only = sum(reached(x) and not reached(y) for x, y in pairs)
+    b_only = sum(reached(y) and not reached(x) for x, y in pairs)
     return a_only, b_only, mcnemar(a_only, b_only)
 
 
@@ -225,8 +243,8 @@ def sigma_table(args):
         inside = sum(lo_ci <= mean <= hi_ci for _, _, _, mean, _, (lo_ci, hi_ci) in b)
         backtracks = sum(x.get("backtracks", 0) for x in j["journeys"])
         cells = ["-", "-", "-"]
-        if args.baseline and (seed == 1):
-            base = nav(args, w, *extra, binary=args.baseline)
+        if has_baseline(args) and (seed == 1):
+            base = nav(args, w, *extra, baseline=True)
             a, bo, p = paired(j, base)
             cells = [pct(base["reached_goal_rate"]), f"{a} / {bo}", pvalue(p)]
         print(f"| w{objects}_{seed} | {survey_label(sigma)} | {pct(j['reached_goal_rate'])} | {ci(j)} | "
@@ -267,46 +285,48 @@ def surveys_table(args):
     1,000 journeys measures that survey, not the survey error. Per world and sigma, --surveys survey
     seeds of --survey-trials journeys each: the pooled rate, the spread between surveys, the forecast,
     its bins, and the paired comparison with a baseline build on the same journeys. The pooled
-    journeys are written to OUT/surveys_w100_W_sS.json (the recovery credit's fit reads them)."""
+    journeys are written to OUT/surveys_wN_W_sS.json (the recovery credit's fit reads them)."""
     print("| world | survey | journeys | reached goal | 95% CI | per survey (min-max) | between-survey sd | "
           "forecast | bins in their CI | baseline | new only / baseline only | McNemar p |")
     print("|---|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|")
     pooled_by_sigma = {}
-    for sigma in ("1", "1.5"):
-        for w_seed in (1, 2, 3):
-            w = world(args, 100, w_seed)
-            runs, bases = [], []
-            for seed in range(1, args.surveys + 1):
-                extra = ["--sigma-map", sigma, "--seed", str(seed)]
-                runs.append(nav(args, w, *extra, trials=args.survey_trials))
-                if args.baseline:
-                    bases.append(nav(args, w, *extra, trials=args.survey_trials, binary=args.baseline))
-            journeys = [x for r in runs for x in r["journeys"] if x["outcome"] != "refused"]
+    # The sparse worlds at both survey errors, pooled below; the dense world at 1 mm, on its own.
+    cases = [(100, w_seed, sigma) for sigma in ("1", "1.5") for w_seed in (1, 2, 3)] + [(400, 1, "1")]
+    for objects, w_seed, sigma in cases:
+        w = world(args, objects, w_seed)
+        runs, bases = [], []
+        for seed in range(1, args.surveys + 1):
+            extra = ["--sigma-map", sigma, "--seed", str(seed)]
+            runs.append(nav(args, w, *extra, trials=args.survey_trials))
+            if has_baseline(args):
+                bases.append(nav(args, w, *extra, trials=args.survey_trials, baseline=True))
+        journeys = [x for r in runs for x in r["journeys"] if x["outcome"] != "refused"]
+        if objects == 100:
             pooled_by_sigma.setdefault(sigma, []).extend(journeys)
-            # Every survey's journeys in one file, for scripts/fit_recovery_credit.py.
-            with open(os.path.join(args.out, f"surveys_w100_{w_seed}_s{sigma}.json"), "w") as f:
-                json.dump({"journeys": journeys}, f)
-            k, n = sum(reached(x) for x in journeys), len(journeys)
-            rates = [sum(reached(x) for x in r["journeys"]) / len(r["journeys"]) for r in runs]
-            mean_rate = sum(rates) / len(rates)
-            sd = math.sqrt(sum((r - mean_rate) ** 2 for r in rates) / max(1, len(rates) - 1))
-            forecast = sum(x["planned_reliability"] for x in journeys) / n
-            b = bins({"journeys": journeys})
-            inside = sum(lo_ci <= mean <= hi_ci for _, _, _, mean, _, (lo_ci, hi_ci) in b)
-            cells = ["-", "-", "-"]
-            if bases:
-                a_only = b_only = 0
-                for r, base in zip(runs, bases):
-                    a, bo, _ = paired(r, base)
-                    a_only, b_only = a_only + a, b_only + bo
-                base_rate = sum(sum(reached(x) for x in r["journeys"]) for r in bases) / sum(
-                    len(r["journeys"]) for r in bases)
-                cells = [pct(base_rate), f"{a_only} / {b_only}", pvalue(mcnemar(a_only, b_only))]
-            lo, hi = wilson(k, n)
-            print(f"| w100_{w_seed} | {survey_label(sigma)} | {n} | {pct(k / n)} | [{100 * lo:.1f}, {100 * hi:.1f}] | "
-                  f"{pct(min(rates))}-{pct(max(rates))} | {100 * sd:.1f} pts | {pct(forecast)} | "
-                  f"{inside} of {len(b)} | {' | '.join(cells)} |", flush=True)
-    print("\nPooled over the three worlds and every survey:\n")
+        # Every survey's journeys in one file, for scripts/fit_recovery_credit.py.
+        with open(os.path.join(args.out, f"surveys_w{objects}_{w_seed}_s{sigma}.json"), "w") as f:
+            json.dump({"journeys": journeys}, f)
+        k, n = sum(reached(x) for x in journeys), len(journeys)
+        rates = [sum(reached(x) for x in r["journeys"]) / len(r["journeys"]) for r in runs]
+        mean_rate = sum(rates) / len(rates)
+        sd = math.sqrt(sum((r - mean_rate) ** 2 for r in rates) / max(1, len(rates) - 1))
+        forecast = sum(x["planned_reliability"] for x in journeys) / n
+        b = bins({"journeys": journeys})
+        inside = sum(lo_ci <= mean <= hi_ci for _, _, _, mean, _, (lo_ci, hi_ci) in b)
+        cells = ["-", "-", "-"]
+        if bases:
+            a_only = b_only = 0
+            for r, base in zip(runs, bases):
+                a, bo, _ = paired(r, base)
+                a_only, b_only = a_only + a, b_only + bo
+            base_rate = sum(sum(reached(x) for x in r["journeys"]) for r in bases) / sum(
+                len(r["journeys"]) for r in bases)
+            cells = [pct(base_rate), f"{a_only} / {b_only}", pvalue(mcnemar(a_only, b_only))]
+        lo, hi = wilson(k, n)
+        print(f"| w{objects}_{w_seed} | {survey_label(sigma)} | {n} | {pct(k / n)} | [{100 * lo:.1f}, {100 * hi:.1f}] | "
+              f"{pct(min(rates))}-{pct(max(rates))} | {100 * sd:.1f} pts | {pct(forecast)} | "
+              f"{inside} of {len(b)} | {' | '.join(cells)} |", flush=True)
+    print("\nPooled over the three sparse worlds and every survey:\n")
     print("| survey | R bin | journeys | mean R | reached | 95% CI | in CI |")
     print("|---|---|---:|---:|---:|---|---|")
     for sigma, journeys in pooled_by_sigma.items():
@@ -330,7 +350,9 @@ def parse():
     p.add_argument("--neopipe", default="build/apps/neopipe")
     p.add_argument("--out", default="build/nav-experiments", help="folder for the worlds")
     p.add_argument("--trials", type=int, default=1000)
-    p.add_argument("--baseline", help="another neopipe build to compare with, journey by journey (sigmas table)")
+    p.add_argument("--baseline", help="another neopipe build to compare with, journey by journey (sigmas, surveys)")
+    p.add_argument("--baseline-args", help="options the baseline runs add, e.g. '--descriptions paper' (the baseline "
+                   "is then --neopipe itself unless --baseline names another build)")
     p.add_argument("--surveys", type=int, default=5, help="survey seeds per world and sigma (surveys table)")
     p.add_argument("--survey-trials", type=int, default=200, help="journeys per survey (surveys table)")
     p.add_argument("tables", nargs="*", metavar="TABLE", help=f"any of {', '.join(TABLES)} (default: all)")
