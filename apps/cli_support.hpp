@@ -13,10 +13,11 @@ namespace neopipe::apps {
 
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,       ///< bad input, failed processing
-  kExitUsage = 2,         ///< bad command line
-  kExitUnreachable = 3,   ///< neopipe map: the goal cannot be reached from the start
-  kExitInterrupted = 130  ///< stopped by Ctrl-C after finishing the frames in flight
+  kExitFailure = 1,        ///< bad input, failed processing
+  kExitUsage = 2,          ///< bad command line
+  kExitUnreachable = 3,    ///< neopipe map: the goal cannot be reached from the start
+  kExitInterrupted = 130,  ///< stopped by Ctrl-C after finishing the frames in flight
+  kExitTerminated = 143    ///< stopped by SIGTERM after finishing the frames in flight (128 + 15)
 };
 
 /// Prints "neopipe COMMAND: error: MESSAGE" as one line on stderr (newlines in MESSAGE become spaces).

@@ -27,15 +27,18 @@ namespace {
 namespace pl = neopipe::pipeline;
 namespace io = neopipe::pipeline::io;
 
-// Ctrl-C asks the run to stop reading; frames in flight still finish and their rows are written.
-// A signal handler can reach nothing but a global, so this is the one in the program.
+// Ctrl-C (SIGINT) or SIGTERM asks the run to stop reading; frames in flight still finish and their
+// rows are written. A signal handler can reach nothing but globals, so these are the program's.
 std::atomic<bool> g_stop_requested{false};
-extern "C" void on_interrupt(int /*signal*/) {
+std::atomic<int> g_stop_signal{0};
+extern "C" void on_interrupt(int signal) {
+  g_stop_signal.store(signal);
   g_stop_requested.store(true);
 }
 
 void list_kernels() {
-  for (const auto* k : pl::standard_kernels().all()) fmt::print("{:<10} {}\n", k->name, k->summary);
+  const pl::KernelRegistry registry = pl::standard_kernels();
+  for (const auto* k : registry.all()) fmt::print("{:<10} {}\n", k->name, k->summary);
 }
 
 }  // namespace
@@ -70,7 +73,9 @@ CLI::App* add_run_command(CLI::App& parent, RunArgs& a) {
       "Without --graph: the built-in blob graph, gray (BT.601) -> threshold (Otsu per frame) -> blobs (8-connected).\n"
       "Frames are read gray (a video's luma plane), or in colour with --annotate, which draws on them.\n"
       "Blob table columns: frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy (with --moments also mu20,mu11,mu02).\n"
-      "Exit status: 0 done, 1 bad input or failed processing, 2 bad command line, 130 interrupted.");
+      "Exit status: 0 done, 1 bad input or failed processing (a full disk included), 2 bad command line, 130 "
+      "interrupted (Ctrl-C), 143 terminated (SIGTERM); both after writing the rows of every frame read. A "
+      "closed output pipe ends it as it ends any filter (killed by SIGPIPE, 141).");
   cmd->add_option("inputs", a.inputs, "A video file, or image files and directories of images")->type_name("INPUT...");
   cmd->add_option("--graph", a.graph, "Graph spec (YAML) to run instead of the built-in blob graph")
       ->check(CLI::ExistingFile)
@@ -168,7 +173,9 @@ int run_command(const RunArgs& a) {
   };
 
   g_stop_requested = false;
+  g_stop_signal = 0;
   std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   pl::RunStats stats;
   int code = kExitOk;
   std::string error;
@@ -192,13 +199,15 @@ int run_command(const RunArgs& a) {
     error = e.what();
   }
   std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   bar.clear();
   if (!a.quiet) fmt::print(stderr, "neopipe run: {}: {}\n", source->description(), stats.summary());
   if (code != kExitOk) {
     print_error("run", error);
     return code;
   }
-  return stats.interrupted ? kExitInterrupted : kExitOk;
+  if (!stats.interrupted) return kExitOk;
+  return g_stop_signal == SIGTERM ? kExitTerminated : kExitInterrupted;
 }
 
 }  // namespace neopipe::apps

@@ -9,12 +9,12 @@ void KernelRegistry::add(KernelInfo info) {
   kernels_.insert_or_assign(name, std::move(info));
 }
 
-const KernelInfo* KernelRegistry::find(std::string_view name) const {
+const KernelInfo* KernelRegistry::find(std::string_view name) const& {
   const auto it = kernels_.find(name);
   return it == kernels_.end() ? nullptr : &it->second;
 }
 
-std::vector<const KernelInfo*> KernelRegistry::all() const {
+std::vector<const KernelInfo*> KernelRegistry::all() const& {
   std::vector<const KernelInfo*> out;
   for (const auto& [name, info] : kernels_) out.push_back(&info);
   return out;

@@ -31,8 +31,12 @@ struct KernelInfo {
 class KernelRegistry {
  public:
   void add(KernelInfo info);
-  const KernelInfo* find(std::string_view name) const;
-  std::vector<const KernelInfo*> all() const;
+  /// Pointers into the registry: it must outlive them, so a temporary registry cannot hand them out
+  /// (`for (auto* k : standard_kernels().all())` read freed memory: a compile error now).
+  const KernelInfo* find(std::string_view name) const&;
+  const KernelInfo* find(std::string_view name) const&& = delete;
+  std::vector<const KernelInfo*> all() const&;
+  std::vector<const KernelInfo*> all() const&& = delete;
 
  private:
   std::map<std::string, KernelInfo, std::less<>> kernels_;

@@ -1,7 +1,9 @@
 #include "pipeline/io/blob_table_writer.hpp"
 
+#include <fcntl.h>
 #include <fmt/compile.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -26,20 +28,54 @@ BlobTableWriter::BlobTableWriter(std::ostream& out, TableOptions options)
   header();
 }
 
+// A file is written through its descriptor, not an ofstream: a failed write() leaves its cause in
+// errno at once (the stream's was long overwritten: "No space left on device" came out as "No such
+// file or directory"), and says how much went out, so a partly written frame can be cut off.
 BlobTableWriter::BlobTableWriter(const std::string& path, TableOptions options)
-    : file_(std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc)),
-      out_(file_.get()),
+    : fd_(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)),
       options_(std::move(options)),
       path_(path) {
-  if (!*file_) throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
-  header();
+  if (fd_ < 0) throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
+  try {
+    header();
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+}
+
+BlobTableWriter::~BlobTableWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void BlobTableWriter::put(const char* data, std::size_t size) {
+  if (fd_ < 0) {
+    out_->write(data, static_cast<std::streamsize>(size));
+    out_->flush();
+    if (!*out_) throw std::runtime_error(path_ + ": write failed");
+    return;
+  }
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::write(fd_, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int cause = n < 0 ? errno : ENOSPC;
+      // Best effort: a file that cannot be cut (a device) keeps what it took.
+      if (::ftruncate(fd_, committed_) == 0) ::lseek(fd_, committed_, SEEK_SET);
+      throw std::runtime_error(fmt::format("{}: write failed: {} (the table keeps its {} rows of whole frames)", path_,
+                                           std::strerror(cause), rows_));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  committed_ += static_cast<std::int64_t>(size);
 }
 
 void BlobTableWriter::header() {
   if (options_.format != TableFormat::csv) return;
-  *out_ << "frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy" << (options_.moments ? ",mu20,mu11,mu02" : "")
-        << (options_.to_world ? ",X,Y" : "") << '\n';
-  out_->flush();
+  const std::string line = fmt::format("frame,blob,area,cx,cy,x0,y0,w,h,wcx,wcy{}{}\n",
+                                       options_.moments ? ",mu20,mu11,mu02" : "", options_.to_world ? ",X,Y" : "");
+  put(line.data(), line.size());
 }
 
 void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
@@ -77,9 +113,7 @@ void BlobTableWriter::write(std::int64_t frame, const BlobList& blobs) {
       it = fmt::format_to(it, FMT_COMPILE("}}\n"));
     }
   }
-  out_->write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  out_->flush();
-  if (!*out_) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+  put(buffer_.data(), buffer_.size());
   rows_ += static_cast<std::int64_t>(blobs.size());
 }
 

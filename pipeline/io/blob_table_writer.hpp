@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <opencv2/core/types.hpp>
@@ -40,16 +39,23 @@ class BlobTableWriter {
   BlobTableWriter(std::ostream& out, TableOptions options);
   /// Creates (truncates) `path`; throws std::runtime_error naming it if it cannot.
   BlobTableWriter(const std::string& path, TableOptions options);
+  ~BlobTableWriter();
+  BlobTableWriter(const BlobTableWriter&) = delete;
+  BlobTableWriter& operator=(const BlobTableWriter&) = delete;
 
-  /// Writes one frame's rows and flushes, so rows of processed frames survive a later failure.
+  /// Writes one frame's rows and flushes, so rows of processed frames survive a later failure. When
+  /// a file cannot take them all (a full disk), the frame's part already written is cut off again,
+  /// so the file ends with the last whole frame, and the error names the file and the cause.
   void write(std::int64_t frame, const BlobList& blobs);
   std::int64_t rows() const { return rows_; }
 
  private:
   void header();
+  void put(const char* data, std::size_t size);
 
-  std::unique_ptr<std::ofstream> file_;
-  std::ostream* out_;
+  int fd_ = -1;                  ///< the file's descriptor (a path given), else -1
+  std::int64_t committed_ = 0;   ///< bytes of the file that end a whole frame
+  std::ostream* out_ = nullptr;  ///< the stream (no path given)
   TableOptions options_;
   std::string path_;
   fmt::memory_buffer buffer_;  ///< one frame's rows, written at once; keeps its capacity

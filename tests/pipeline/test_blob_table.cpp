@@ -10,11 +10,13 @@
 // frames_read == frames_processed + frames_dropped.
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cmath>
 #include <condition_variable>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -409,6 +411,48 @@ TEST(BlobTableWriter, WritesFilesAndRefusesUncreatablePaths) {
     EXPECT_EQ(std::string(e.what()).rfind(nowhere + ": cannot create", 0), 0U) << e.what();
   }
   EXPECT_THROW(io::BlobTableWriter(dir.str(), {}), std::runtime_error);  // a directory
+}
+
+// A file that fills up mid-frame (here: the process's file-size limit, which fails write() with
+// EFBIG as a full disk fails it with ENOSPC) keeps the rows of whole frames only: the part of the
+// frame that got out is cut off again, and the error names the file, the cause and the rows kept.
+TEST(BlobTableWriter, AFileThatFillsUpEndsWithTheLastWholeFrame) {
+  const TempDir dir("neopipe_blob_table_full");
+  const std::string path = dir.file("blobs.csv");
+  const pl::BlobList blobs = tricky_blobs();
+  rlimit old{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &old), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);  // else the limit kills the process
+  rlimit limit = old;
+  limit.rlim_cur = 2000;  // bytes: the header and a few frames
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limit), 0);
+  std::string message;
+  std::int64_t kept = -1;
+  {
+    io::BlobTableWriter w(path, table_options(io::TableFormat::csv, true));
+    try {
+      for (std::int64_t frame = 0; frame < 100; ++frame) w.write(frame, blobs);
+    } catch (const std::runtime_error& e) {
+      message = e.what();
+    }
+    kept = w.rows();
+  }
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(message.rfind(path + ": write failed: File too large (the table keeps its ", 0), 0U) << message;
+  const std::string text = [&] {
+    std::ifstream in(path);
+    std::stringstream all;
+    all << in.rdbuf();
+    return all.str();
+  }();
+  ASSERT_GT(kept, 0);
+  const auto frames = kept / static_cast<std::int64_t>(blobs.size());
+  EXPECT_EQ(kept % static_cast<std::int64_t>(blobs.size()), 0);
+  std::vector<std::pair<std::int64_t, pl::BlobList>> whole;
+  for (std::int64_t f = 0; f < frames; ++f) whole.emplace_back(f, blobs);
+  EXPECT_EQ(text, write_table(table_options(io::TableFormat::csv, true), whole));
+  EXPECT_LE(text.size(), 2000U);
 }
 
 TEST(BlobTableWriter, FormatFromTheFileName) {

@@ -20,6 +20,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pipeline/builtin_graphs.hpp"
@@ -36,6 +37,18 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kOrigin = "spec.yaml";
+
+// A registry hands out pointers into itself, so only one that outlives them may: asking a temporary
+// (`standard_kernels().all()`) is a compile error, as it once was a read of freed memory (issue 18).
+template <class Registry>
+concept hands_out_kernels = requires(Registry&& r) {
+  std::forward<Registry>(r).all();
+  std::forward<Registry>(r).find("gray");
+};
+static_assert(hands_out_kernels<const pl::KernelRegistry&>);
+static_assert(hands_out_kernels<pl::KernelRegistry&>);
+static_assert(!hands_out_kernels<pl::KernelRegistry>);  // a temporary
+static_assert(!hands_out_kernels<const pl::KernelRegistry>);
 
 // Splits a gray image into its bright part ("hi": pixels > 127, others 0) and its dark part ("lo").
 class SplitNode final : public pl::Node {
