@@ -7,7 +7,8 @@
 //     summary, images / image lists / directories as input;
 //   * determinism across --threads for the built-in graph and an example graph, and
 //     examples/blobs.yaml == the built-in graph byte for byte;
-//   * --annotate into a video and into PNG files; --realtime accounting (processed + dropped);
+//   * --annotate into a video and into PNG files; --realtime accounting (processed + dropped), and
+//     frames dropped while the sink is blocked;
 //   * bad input and bad command lines: a non-zero exit (2 for command-line errors), no signal, exactly
 //     one "error:" line naming the input and the cause, rows of already processed frames kept;
 //     graph spec errors reported as "path:line:col:";
@@ -18,6 +19,7 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
@@ -25,6 +27,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -682,6 +685,117 @@ TEST_F(Cli, RealtimeAccountsForEveryFrameAsProcessedOrDropped) {
     EXPECT_LT(f, kFrames);
   }
   expect_scene_rows(t, frames, 0.5, true);
+}
+
+/// The sink of `neopipe run --annotate`, made to block: frame 0's annotated PNG goes into a FIFO
+/// that this object reads. It opens its end first (without waiting for a writer) and shrinks the
+/// pipe to a page, so the child's write of a larger PNG blocks until the pipe is read. Waiting for
+/// the writer returns once the first bytes came (the child is inside its sink, on frame 0); drain()
+/// reads everything up to the child's close, letting it go on.
+class BlockingPngSink {
+ public:
+  explicit BlockingPngSink(const fs::path& fifo) {
+    if (mkfifo(fifo.c_str(), 0600) != 0) {
+      ADD_FAILURE() << "mkfifo " << fifo << ": " << std::strerror(errno);
+      return;
+    }
+    fd_ = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    if (fd_ < 0) ADD_FAILURE() << "open " << fifo << ": " << std::strerror(errno);
+    if (fd_ >= 0) (void)fcntl(fd_, F_SETPIPE_SZ, 4096);  // the smallest pipe; a failure only leaves 64 KiB
+  }
+  ~BlockingPngSink() {
+    if (fd_ >= 0) close(fd_);
+  }
+  BlockingPngSink(const BlockingPngSink&) = delete;
+  BlockingPngSink& operator=(const BlockingPngSink&) = delete;
+
+  /// True once the writer has sent its first bytes; false if the child ended first (it never got
+  /// there: the test fails rather than hangs).
+  bool wait_for_the_writer(const std::atomic<bool>& child_ended) {
+    while (fd_ >= 0 && !child_ended) {
+      pollfd p{fd_, POLLIN, 0};
+      // Before any writer, Linux reports nothing (or a hang-up) on a FIFO: wait and look again.
+      if (poll(&p, 1, 50) > 0 && (p.revents & POLLIN) != 0) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+  }
+
+  /// Reads until the writer closes (or `limit` passes); returns the bytes.
+  std::string drain(std::chrono::seconds limit) {
+    std::string data;
+    const auto give_up = std::chrono::steady_clock::now() + limit;
+    char buf[65536];
+    while (fd_ >= 0 && std::chrono::steady_clock::now() < give_up) {
+      const ssize_t n = read(fd_, buf, sizeof buf);
+      if (n > 0) {
+        data.append(buf, static_cast<size_t>(n));
+      } else if (n == 0) {
+        break;  // the writer closed its end: the PNG is complete
+      } else if (errno == EAGAIN || errno == EINTR) {
+        pollfd p{fd_, POLLIN, 0};
+        (void)poll(&p, 1, 50);
+      } else {
+        ADD_FAILURE() << "reading the FIFO: " << std::strerror(errno);
+        break;
+      }
+    }
+    return data;
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+TEST_F(Cli, RealtimeDropsFramesWhileTheSinkIsBlocked) {
+  // 20 frames of noise at --fps 1000 (due within 20 ms); the annotated PNG of frame 0 is written
+  // into a FIFO that is not read until a second after the child began writing it, so the driver,
+  // which runs the sink, takes no frame for that second. The reader goes on at the pace: with at
+  // most two frames in the pipeline and one waiting to be handed over, frames are dropped unless
+  // the child's reader thread could not read two frames in that whole second. No time is asserted:
+  // the second is a thousand frame periods. Noise, so that the PNG (about 230 KB) cannot fit the
+  // pipe; the threshold above the noise, so that the blob table stays empty.
+  const fs::path video = dir / "noise.mkv";
+  {
+    cv::VideoWriter w(video.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('F', 'F', 'V', '1'), 25.0,
+                      cv::Size(320, 240), true);
+    ASSERT_TRUE(w.isOpened());
+    cv::RNG rng(18);
+    cv::Mat f(240, 320, CV_8UC3);
+    for (int k = 0; k < kFrames; ++k) {
+      rng.fill(f, cv::RNG::UNIFORM, 0, 150);
+      w.write(f);
+    }
+  }
+  BlockingPngSink sink(dir / "a_000000.png");
+  std::string png_bytes;
+  bool writer_came = false;
+  std::atomic<bool> child_ended{false};
+  std::thread reader([&] {
+    writer_came = sink.wait_for_the_writer(child_ended);
+    if (!writer_came) return;
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    png_bytes = sink.drain(std::chrono::seconds(kTimeoutSeconds));
+  });
+  const RunResult r =
+      run_neopipe({"run", video.string(), "--realtime", "--fps", "1000", "--threads", "2", "--frames-in-flight", "2",
+                   "--threshold", "250", "--annotate", (dir / "a.png").string(), "--out", (dir / "t.csv").string()});
+  child_ended = true;
+  reader.join();
+  ASSERT_TRUE(writer_came) << "the child never wrote frame 0's annotated image\n" << r.err;
+  ASSERT_TRUE(succeeded(r));
+  EXPECT_FALSE(cv::imdecode(std::vector<uchar>(png_bytes.begin(), png_bytes.end()), cv::IMREAD_COLOR).empty())
+      << "frame 0's annotated image, " << png_bytes.size() << " bytes, is no PNG";
+  const auto s = parse_summary(r.err);
+  ASSERT_TRUE(s) << r.err;
+  EXPECT_EQ(s->processed + s->dropped, kFrames);
+  EXPECT_GE(s->processed, 1);
+  EXPECT_GE(s->dropped, 1) << r.err;
+  // The lag is reported, and no larger than the run.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(blobs in ([0-9.]+) s .*reader lag max ([0-9.]+) ms)")))
+      << r.err;
+  EXPECT_LE(std::stod(m[2]), 1e3 * std::stod(m[1]) + 1);  // both rounded: 1 ms for the seconds' three decimals
 }
 
 // ---------------------------------------------------------------------------------------------
