@@ -687,74 +687,81 @@ TEST_F(Cli, RealtimeAccountsForEveryFrameAsProcessedOrDropped) {
   expect_scene_rows(t, frames, 0.5, true);
 }
 
-/// The sink of `neopipe run --annotate`, made to block: frame 0's annotated PNG goes into a FIFO
-/// that this object reads. It opens its end first (without waiting for a writer) and shrinks the
-/// pipe to a page, so the child's write of a larger PNG blocks until the pipe is read. Waiting for
-/// the writer returns once the first bytes came (the child is inside its sink, on frame 0); drain()
-/// reads everything up to the child's close, letting it go on.
+/// The sink of `neopipe run --annotate STEM.png`, made to block: the annotated PNG of every frame k
+/// goes into a FIFO, STEM_kkkkkk.png, read here. Each is opened at once (without waiting for a writer)
+/// and shrunk to a page, so the child's write of a larger PNG blocks until the FIFO is read.
 class BlockingPngSink {
  public:
-  explicit BlockingPngSink(const fs::path& fifo) {
-    if (mkfifo(fifo.c_str(), 0600) != 0) {
-      ADD_FAILURE() << "mkfifo " << fifo << ": " << std::strerror(errno);
-      return;
+  BlockingPngSink(const fs::path& dir, const std::string& stem, int frames) : bytes_(static_cast<size_t>(frames)) {
+    for (int k = 0; k < frames; ++k) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s_%06d.png", stem.c_str(), k);
+      const fs::path fifo = dir / name;
+      int fd = -1;
+      if (mkfifo(fifo.c_str(), 0600) != 0) {
+        ADD_FAILURE() << "mkfifo " << fifo << ": " << std::strerror(errno);
+      } else if ((fd = open(fifo.c_str(), O_RDONLY | O_NONBLOCK)) < 0) {
+        ADD_FAILURE() << "open " << fifo << ": " << std::strerror(errno);
+      } else {
+        (void)fcntl(fd, F_SETPIPE_SZ, 4096);  // the smallest pipe; a failure only leaves 64 KiB
+      }
+      fds_.push_back(fd);
     }
-    fd_ = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
-    if (fd_ < 0) ADD_FAILURE() << "open " << fifo << ": " << std::strerror(errno);
-    if (fd_ >= 0) (void)fcntl(fd_, F_SETPIPE_SZ, 4096);  // the smallest pipe; a failure only leaves 64 KiB
   }
   ~BlockingPngSink() {
-    if (fd_ >= 0) close(fd_);
+    for (const int fd : fds_) {
+      if (fd >= 0) close(fd);
+    }
   }
   BlockingPngSink(const BlockingPngSink&) = delete;
   BlockingPngSink& operator=(const BlockingPngSink&) = delete;
 
-  /// True once the writer has sent its first bytes; false if the child ended first (it never got
-  /// there: the test fails rather than hangs).
-  bool wait_for_the_writer(const std::atomic<bool>& child_ended) {
-    while (fd_ >= 0 && !child_ended) {
-      pollfd p{fd_, POLLIN, 0};
-      // Before any writer, Linux reports nothing (or a hang-up) on a FIFO: wait and look again.
-      if (poll(&p, 1, 50) > 0 && (p.revents & POLLIN) != 0) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  /// The first frame whose PNG the child began to write (the child is then inside its sink, on that
+  /// frame, and stays there); nullopt if the child ended first (the test fails rather than hangs).
+  std::optional<int> wait_for_the_first_writer(const std::atomic<bool>& child_ended) {
+    while (!child_ended) {
+      for (size_t k = 0; k < fds_.size(); ++k) {
+        if (fds_[k] < 0) continue;
+        pollfd p{fds_[k], POLLIN, 0};
+        // Before any writer, Linux reports nothing (or a hang-up) on a FIFO: look again later.
+        if (poll(&p, 1, 0) > 0 && (p.revents & POLLIN) != 0) return static_cast<int>(k);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
-    return false;
+    return std::nullopt;
   }
 
-  /// Reads until the writer closes (or `limit` passes); returns the bytes.
-  std::string drain(std::chrono::seconds limit) {
-    std::string data;
-    const auto give_up = std::chrono::steady_clock::now() + limit;
-    char buf[65536];
-    while (fd_ >= 0 && std::chrono::steady_clock::now() < give_up) {
-      const ssize_t n = read(fd_, buf, sizeof buf);
-      if (n > 0) {
-        data.append(buf, static_cast<size_t>(n));
-      } else if (n == 0) {
-        break;  // the writer closed its end: the PNG is complete
-      } else if (errno == EAGAIN || errno == EINTR) {
-        pollfd p{fd_, POLLIN, 0};
-        (void)poll(&p, 1, 50);
-      } else {
-        ADD_FAILURE() << "reading the FIFO: " << std::strerror(errno);
-        break;
+  /// Reads whatever the child writes, letting it go on, until it has ended.
+  void drain(const std::atomic<bool>& child_ended) {
+    for (;;) {
+      const bool last_sweep = child_ended;  // read after the end once more: nothing is left behind
+      for (size_t k = 0; k < fds_.size(); ++k) {
+        if (fds_[k] < 0) continue;
+        char buf[65536];
+        ssize_t n = 0;
+        while ((n = read(fds_[k], buf, sizeof buf)) > 0) bytes_[k].append(buf, static_cast<size_t>(n));
       }
+      if (last_sweep) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-    return data;
   }
+
+  /// The bytes written into frame k's FIFO.
+  const std::string& bytes(int k) const { return bytes_[static_cast<size_t>(k)]; }
 
  private:
-  int fd_ = -1;
+  std::vector<int> fds_;
+  std::vector<std::string> bytes_;
 };
 
 TEST_F(Cli, RealtimeDropsFramesWhileTheSinkIsBlocked) {
-  // 20 frames of noise at --fps 1000 (due within 20 ms); the annotated PNG of frame 0 is written
-  // into a FIFO that is not read until a second after the child began writing it, so the driver,
+  // 20 frames of noise at --fps 1000 (due within 20 ms); the annotated PNGs go into FIFOs, and the
+  // first one written is not read until a second after the child began writing it, so the driver,
   // which runs the sink, takes no frame for that second. The reader goes on at the pace: with at
   // most two frames in the pipeline and one waiting to be handed over, frames are dropped unless
   // the child's reader thread could not read two frames in that whole second. No time is asserted:
-  // the second is a thousand frame periods. Noise, so that the PNG (about 230 KB) cannot fit the
-  // pipe; the threshold above the noise, so that the blob table stays empty.
+  // the second is a thousand frame periods. Noise, so that a PNG (about 230 KB) cannot fit a FIFO;
+  // the threshold above the noise, so that the blob table stays empty.
   const fs::path video = dir / "noise.mkv";
   {
     cv::VideoWriter w(video.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('F', 'F', 'V', '1'), 25.0,
@@ -767,30 +774,36 @@ TEST_F(Cli, RealtimeDropsFramesWhileTheSinkIsBlocked) {
       w.write(f);
     }
   }
-  BlockingPngSink sink(dir / "a_000000.png");
-  std::string png_bytes;
-  bool writer_came = false;
+  BlockingPngSink sink(dir, "a", kFrames);
+  std::optional<int> first;
   std::atomic<bool> child_ended{false};
   std::thread reader([&] {
-    writer_came = sink.wait_for_the_writer(child_ended);
-    if (!writer_came) return;
-    std::this_thread::sleep_for(std::chrono::seconds(1));
-    png_bytes = sink.drain(std::chrono::seconds(kTimeoutSeconds));
+    first = sink.wait_for_the_first_writer(child_ended);
+    if (first) std::this_thread::sleep_for(std::chrono::seconds(1));
+    sink.drain(child_ended);
   });
   const RunResult r =
       run_neopipe({"run", video.string(), "--realtime", "--fps", "1000", "--threads", "2", "--frames-in-flight", "2",
                    "--threshold", "250", "--annotate", (dir / "a.png").string(), "--out", (dir / "t.csv").string()});
   child_ended = true;
   reader.join();
-  ASSERT_TRUE(writer_came) << "the child never wrote frame 0's annotated image\n" << r.err;
+  ASSERT_TRUE(first.has_value()) << "the child wrote no annotated image\n" << r.err;
   ASSERT_TRUE(succeeded(r));
-  EXPECT_FALSE(cv::imdecode(std::vector<uchar>(png_bytes.begin(), png_bytes.end()), cv::IMREAD_COLOR).empty())
-      << "frame 0's annotated image, " << png_bytes.size() << " bytes, is no PNG";
   const auto s = parse_summary(r.err);
   ASSERT_TRUE(s) << r.err;
   EXPECT_EQ(s->processed + s->dropped, kFrames);
   EXPECT_GE(s->processed, 1);
   EXPECT_GE(s->dropped, 1) << r.err;
+  // Every processed frame, and only those, wrote its annotated PNG.
+  int written = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const std::string& b = sink.bytes(k);
+    if (b.empty()) continue;
+    ++written;
+    EXPECT_FALSE(cv::imdecode(std::vector<uchar>(b.begin(), b.end()), cv::IMREAD_COLOR).empty())
+        << "frame " << k << "'s annotated image, " << b.size() << " bytes, is no PNG";
+  }
+  EXPECT_EQ(written, s->processed);
   // The lag is reported, and no larger than the run.
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(blobs in ([0-9.]+) s .*reader lag max ([0-9.]+) ms)")))

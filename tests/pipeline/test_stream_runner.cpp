@@ -569,11 +569,14 @@ TEST(StreamRunner, RealtimeCountsEveryFrameAsProcessedOrDropped) {
 }
 
 TEST(StreamRunner, RealtimeDropsFramesWhileTheSinkIsBlocked) {
-  // The sink blocks on frame 0 until the reader has read the whole source (50 frames at 1000/s), so
-  // the driver, which delivers, takes nothing meanwhile. Before frame 0 was delivered at most
-  // frames_in_flight frames had entered the pipeline; once the sink returns, the reader has ended
-  // with at most the newest frame waiting. So at most frames_in_flight + 1 frames are processed
-  // and the other 47 or more are dropped, however fast or slow the machine.
+  // The sink blocks on the first frame it gets until the reader has read the whole source (50 frames
+  // at 1000/s), so the driver, which delivers, takes nothing meanwhile. By then at most
+  // frames_in_flight + 1 frames have entered the pipeline or are in the driver's hands (a slot
+  // frees when the first frame completes, before its delivery, and a submit delivers before it
+  // admits); once the sink returns, the reader has ended with at most the newest frame waiting. So
+  // at most frames_in_flight + 2 frames are processed and the other 46 or more are dropped, however
+  // fast or slow the machine. (The first frame delivered need not be frame 0: on a slow start
+  // frame 1 may already have replaced it.)
   const std::int64_t frames = 50;
   const int frames_in_flight = 2;
   ScriptedSource source({.frames = frames});
@@ -587,7 +590,7 @@ TEST(StreamRunner, RealtimeDropsFramesWhileTheSinkIsBlocked) {
       source, blob_graph(), options,
       [&](const pl::FrameResult& r) {
         delivered.push_back(r.index);
-        if (r.index != 0) return;
+        if (delivered.size() != 1) return;
         // The reader's call after the last frame finds the end. (The cap only keeps a broken reader
         // from hanging the test; the expectations below do not depend on it.)
         for (int waited_ms = 0; source.calls() <= frames && waited_ms < 20000; ++waited_ms) {
@@ -599,11 +602,10 @@ TEST(StreamRunner, RealtimeDropsFramesWhileTheSinkIsBlocked) {
   EXPECT_EQ(stats.frames_read, frames);
   EXPECT_EQ(stats.frames_processed + stats.frames_dropped, frames);
   EXPECT_GE(stats.frames_processed, 1);
-  EXPECT_LE(stats.frames_processed, frames_in_flight + 1);
-  EXPECT_GE(stats.frames_dropped, frames - frames_in_flight - 1);
-  ASSERT_FALSE(delivered.empty());
-  EXPECT_EQ(delivered.front(), 0);
+  EXPECT_LE(stats.frames_processed, frames_in_flight + 2);
+  EXPECT_GE(stats.frames_dropped, frames - frames_in_flight - 2);
   EXPECT_EQ(static_cast<std::int64_t>(delivered.size()), stats.frames_processed);
+  for (size_t i = 1; i < delivered.size(); ++i) EXPECT_LT(delivered[i - 1], delivered[i]);
 }
 
 TEST(StreamRunner, RealtimeReportsHowFarASlowSourceFallsBehind) {
