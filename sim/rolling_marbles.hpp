@@ -19,6 +19,8 @@ class RollingMarbles {
   /// diameter at once).
   void step(double dt);
   [[nodiscard]] const std::vector<Eigen::Vector2d>& positions() const { return positions_; }
+  /// mm/s; exposed so that the kinetic energy the model promises to keep can be checked.
+  [[nodiscard]] const std::vector<Eigen::Vector2d>& velocities() const { return velocities_; }
 
  private:
   void substep(double dt);

@@ -1,7 +1,8 @@
 // Calibration from images, end to end. In the simulator: dot-grid target images from the default
 // global camera (lens distortion on, noise on) -> the dot-grid detector -> the full model -> rendered
 // marbles through the engine's blob graph -> workspace positions, against the world file's truth:
-// per-axis |mean| <= 0.05 mm and sd <= 0.15 mm (issue 5). On real photographs: OpenCV's chessboard
+// per-axis |mean| <= 0.005 mm, sd <= 0.010 mm and max < 0.04 mm, about twice what is measured (issue
+// 5's target, |mean| <= 0.05 mm and sd <= 0.15 mm, is thirty times looser). On real photographs: OpenCV's chessboard
 // sample set gives the focal length and reprojection RMS of cv::calibrateCamera on the same
 // detections within 1%, and the focal length of OpenCV's own sample recipe within 1%.
 
@@ -44,7 +45,7 @@ calib::View detected_view(const cv::Mat& img, const sim::CalibrationTarget& t, c
 
 }  // namespace
 
-TEST(CalibrationImages, SimulatedDotGridMapsMarblesTenTimesBetterThanThePapersRig) {
+TEST(CalibrationImages, SimulatedDotGridMapsMarblesToAHundredthOfAMillimetre) {
   const auto camera = sim::make_global_camera({500, 500});
   const sim::MarbleRenderer renderer(sim::ImageModel{}, camera.size());  // default: lens, noise 2, blur
   const sim::CalibrationTarget grid{sim::TargetKind::dots, 15, 15, 25, 9};
@@ -88,11 +89,16 @@ TEST(CalibrationImages, SimulatedDotGridMapsMarblesTenTimesBetterThanThePapersRi
       "marbles via calibration: mean (%+.4f, %+.4f) mm, sd (%.4f, %.4f) mm, rms %.4f, max %.4f; "
       "calibration held-out rms %.4f mm, reprojection %.4f px\n",
       e.mean.x(), e.mean.y(), e.sd.x(), e.sd.y(), e.rms, e.max, c.report.held_out.rms, c.report.reprojection_rms_px);
-  EXPECT_LE(std::abs(e.mean.x()), 0.05);
-  EXPECT_LE(std::abs(e.mean.y()), 0.05);
-  EXPECT_LE(e.sd.x(), 0.15);
-  EXPECT_LE(e.sd.y(), 0.15);
-  EXPECT_LT(e.max, 1.0);
+  // Measured (every input here is seeded, so this is the figure each run gives): mean (-0.0018,
+  // +0.0004) mm, sd (0.0050, 0.0050) mm, max 0.0198 mm. The bounds allow about twice that, for other
+  // CPUs' and library versions' rounding; issue 5's target (|mean| <= 0.05, sd <= 0.15 mm) would
+  // still pass a calibration that had lost its lens model's higher terms (that doubles every figure:
+  // mean (-0.0069, -0.0059), sd (0.0103, 0.0109), max 0.066 mm).
+  EXPECT_LE(std::abs(e.mean.x()), 0.005);
+  EXPECT_LE(std::abs(e.mean.y()), 0.005);
+  EXPECT_LE(e.sd.x(), 0.010);
+  EXPECT_LE(e.sd.y(), 0.010);
+  EXPECT_LT(e.max, 0.04);
 }
 
 TEST(CalibrationImages, OpenCVChessboardSamplesMatchCalibrateCamera) {

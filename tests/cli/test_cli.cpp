@@ -7,7 +7,8 @@
 //     summary, images / image lists / directories as input;
 //   * determinism across --threads for the built-in graph and an example graph, and
 //     examples/blobs.yaml == the built-in graph byte for byte;
-//   * --annotate into a video and into PNG files; --realtime accounting (processed + dropped);
+//   * --annotate into a video and into PNG files; --realtime accounting (processed + dropped), and
+//     frames dropped while the sink is blocked;
 //   * bad input and bad command lines: a non-zero exit (2 for command-line errors), no signal, exactly
 //     one "error:" line naming the input and the cause, rows of already processed frames kept;
 //     graph spec errors reported as "path:line:col:";
@@ -18,6 +19,7 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
@@ -25,6 +27,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -682,6 +685,130 @@ TEST_F(Cli, RealtimeAccountsForEveryFrameAsProcessedOrDropped) {
     EXPECT_LT(f, kFrames);
   }
   expect_scene_rows(t, frames, 0.5, true);
+}
+
+/// The sink of `neopipe run --annotate STEM.png`, made to block: the annotated PNG of every frame k
+/// goes into a FIFO, STEM_kkkkkk.png, read here. Each is opened at once (without waiting for a writer)
+/// and shrunk to a page, so the child's write of a larger PNG blocks until the FIFO is read.
+class BlockingPngSink {
+ public:
+  BlockingPngSink(const fs::path& dir, const std::string& stem, int frames) : bytes_(static_cast<size_t>(frames)) {
+    for (int k = 0; k < frames; ++k) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s_%06d.png", stem.c_str(), k);
+      const fs::path fifo = dir / name;
+      int fd = -1;
+      if (mkfifo(fifo.c_str(), 0600) != 0) {
+        ADD_FAILURE() << "mkfifo " << fifo << ": " << std::strerror(errno);
+      } else if ((fd = open(fifo.c_str(), O_RDONLY | O_NONBLOCK)) < 0) {
+        ADD_FAILURE() << "open " << fifo << ": " << std::strerror(errno);
+      } else {
+        (void)fcntl(fd, F_SETPIPE_SZ, 4096);  // the smallest pipe; a failure only leaves 64 KiB
+      }
+      fds_.push_back(fd);
+    }
+  }
+  ~BlockingPngSink() {
+    for (const int fd : fds_) {
+      if (fd >= 0) close(fd);
+    }
+  }
+  BlockingPngSink(const BlockingPngSink&) = delete;
+  BlockingPngSink& operator=(const BlockingPngSink&) = delete;
+
+  /// The first frame whose PNG the child began to write (the child is then inside its sink, on that
+  /// frame, and stays there); nullopt if the child ended first (the test fails rather than hangs).
+  std::optional<int> wait_for_the_first_writer(const std::atomic<bool>& child_ended) {
+    while (!child_ended) {
+      for (size_t k = 0; k < fds_.size(); ++k) {
+        if (fds_[k] < 0) continue;
+        pollfd p{fds_[k], POLLIN, 0};
+        // Before any writer, Linux reports nothing (or a hang-up) on a FIFO: look again later.
+        if (poll(&p, 1, 0) > 0 && (p.revents & POLLIN) != 0) return static_cast<int>(k);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return std::nullopt;
+  }
+
+  /// Reads whatever the child writes, letting it go on, until it has ended.
+  void drain(const std::atomic<bool>& child_ended) {
+    for (;;) {
+      const bool last_sweep = child_ended;  // read after the end once more: nothing is left behind
+      for (size_t k = 0; k < fds_.size(); ++k) {
+        if (fds_[k] < 0) continue;
+        char buf[65536];
+        ssize_t n = 0;
+        while ((n = read(fds_[k], buf, sizeof buf)) > 0) bytes_[k].append(buf, static_cast<size_t>(n));
+      }
+      if (last_sweep) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+
+  /// The bytes written into frame k's FIFO.
+  const std::string& bytes(int k) const { return bytes_[static_cast<size_t>(k)]; }
+
+ private:
+  std::vector<int> fds_;
+  std::vector<std::string> bytes_;
+};
+
+TEST_F(Cli, RealtimeDropsFramesWhileTheSinkIsBlocked) {
+  // 20 frames of noise at --fps 1000 (due within 20 ms); the annotated PNGs go into FIFOs, and the
+  // first one written is not read until a second after the child began writing it, so the driver,
+  // which runs the sink, takes no frame for that second. The reader goes on at the pace: with at
+  // most two frames in the pipeline and one waiting to be handed over, frames are dropped unless
+  // the child's reader thread could not read two frames in that whole second. No time is asserted:
+  // the second is a thousand frame periods. Noise, so that a PNG (about 230 KB) cannot fit a FIFO;
+  // the threshold above the noise, so that the blob table stays empty.
+  const fs::path video = dir / "noise.mkv";
+  {
+    cv::VideoWriter w(video.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('F', 'F', 'V', '1'), 25.0,
+                      cv::Size(320, 240), true);
+    ASSERT_TRUE(w.isOpened());
+    cv::RNG rng(18);
+    cv::Mat f(240, 320, CV_8UC3);
+    for (int k = 0; k < kFrames; ++k) {
+      rng.fill(f, cv::RNG::UNIFORM, 0, 150);
+      w.write(f);
+    }
+  }
+  BlockingPngSink sink(dir, "a", kFrames);
+  std::optional<int> first;
+  std::atomic<bool> child_ended{false};
+  std::thread reader([&] {
+    first = sink.wait_for_the_first_writer(child_ended);
+    if (first) std::this_thread::sleep_for(std::chrono::seconds(1));
+    sink.drain(child_ended);
+  });
+  const RunResult r =
+      run_neopipe({"run", video.string(), "--realtime", "--fps", "1000", "--threads", "2", "--frames-in-flight", "2",
+                   "--threshold", "250", "--annotate", (dir / "a.png").string(), "--out", (dir / "t.csv").string()});
+  child_ended = true;
+  reader.join();
+  ASSERT_TRUE(first.has_value()) << "the child wrote no annotated image\n" << r.err;
+  ASSERT_TRUE(succeeded(r));
+  const auto s = parse_summary(r.err);
+  ASSERT_TRUE(s) << r.err;
+  EXPECT_EQ(s->processed + s->dropped, kFrames);
+  EXPECT_GE(s->processed, 1);
+  EXPECT_GE(s->dropped, 1) << r.err;
+  // Every processed frame, and only those, wrote its annotated PNG.
+  int written = 0;
+  for (int k = 0; k < kFrames; ++k) {
+    const std::string& b = sink.bytes(k);
+    if (b.empty()) continue;
+    ++written;
+    EXPECT_FALSE(cv::imdecode(std::vector<uchar>(b.begin(), b.end()), cv::IMREAD_COLOR).empty())
+        << "frame " << k << "'s annotated image, " << b.size() << " bytes, is no PNG";
+  }
+  EXPECT_EQ(written, s->processed);
+  // The lag is reported, and no larger than the run.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(blobs in ([0-9.]+) s .*reader lag max ([0-9.]+) ms)")))
+      << r.err;
+  EXPECT_LE(std::stod(m[2]), 1e3 * std::stod(m[1]) + 1);  // both rounded: 1 ms for the seconds' three decimals
 }
 
 // ---------------------------------------------------------------------------------------------

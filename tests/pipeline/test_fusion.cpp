@@ -1,11 +1,16 @@
 // Fusion (pipeline/fusion.hpp): which nodes the scheduler fuses, and that fusing changes nothing.
 // plan_fusion groups single-use chains of row-computable nodes and leaves alone graph outputs,
 // nodes used twice or through a delay, and Otsu's threshold (it needs its whole input first). Every
-// graph here gives bit-identical outputs fused and unfused, for stripes of 1, 2, 3 and 7 rows and
-// the automatic size, on heights that do not divide into stripes, with 1, 2 and 8 threads.
+// graph compared here has at least one fused group (a graph without one runs the same steps either
+// way) and gives bit-identical outputs fused and unfused, for stripes of 1, 2, 3 and 7 rows and the
+// automatic size, on heights that do not divide into stripes, with 1, 2 and 8 threads.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
@@ -14,6 +19,8 @@
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
 #include "pipeline/fusion.hpp"
+#include "pipeline/kernel_registry.hpp"
+#include "pipeline/node.hpp"
 #include "pipeline_test_support.hpp"
 
 namespace pl = neopipe::pipeline;
@@ -77,6 +84,9 @@ std::vector<cv::Mat> frames_for(const pl::CompiledGraph& g, cv::Size size, int c
 }
 
 void expect_fused_equals_unfused(const std::function<pl::CompiledGraph()>& make, cv::Size size) {
+  // Without a fused group, fuse = true runs exactly the unfused steps, and the comparison below
+  // would hold whatever fusion did.
+  ASSERT_FALSE(pl::plan_fusion(make()).empty()) << "the graph has no fused group: nothing to compare";
   const auto frames = frames_for(make(), size, 4);
   const auto reference = pl::run_frames(make(), frames, {.threads = 1, .fuse = false});
   for (int threads : {1, 2, 8}) {
@@ -94,6 +104,25 @@ void expect_fused_equals_unfused(const std::function<pl::CompiledGraph()>& make,
     }
   }
 }
+
+// A fusable point node that copies its input and counts the rows it computes: unfused, each row
+// once; fused, a producer's rows in a consumer's halo are computed again for every stripe that needs
+// them. So the count tells whether the executor really ran the fused step.
+class CountingCopyNode final : public pl::Node {
+ public:
+  explicit CountingCopyNode(std::atomic<long>& rows)
+      : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, neopipe::kernels::Footprint::point,
+             pl::FrameOrder::any),
+        rows_(rows) {}
+  void compute_row(const pl::RowInputs& in, std::uint8_t* out, int y, int width) const override {
+    std::copy_n(in.row(0, y), width, out);
+    ++rows_;
+  }
+  bool fusable() const override { return true; }
+
+ private:
+  std::atomic<long>& rows_;
+};
 
 }  // namespace
 
@@ -117,6 +146,8 @@ TEST(FusionPlan, ExamplesFuseWhatIsUsedOnce) {
             (std::vector<std::vector<std::string>>{{"gx", "gy", "mx", "my", "magnitude"}}));
   // Otsu's threshold needs its whole input first; gray has two uses.
   EXPECT_TRUE(groups_of(compile_example("blobs.yaml")).empty());
+  // excess feeds the blobs twice (image and weights), and the blobs node cannot fuse.
+  EXPECT_TRUE(groups_of(compile_example("marbles.yaml")).empty());
 }
 
 TEST(FusionPlan, OutputsDelaysAndSharedNodesStayWhole) {
@@ -160,8 +191,40 @@ TEST(Fusion, TreeEqualsUnfused) {
   }
 }
 
+TEST(Fusion, FusedRunsReallyRunTheFusedStep) {
+  // Equal outputs alone would also hold if the executor ignored `fuse`.
+  std::atomic<long> rows{0};
+  pl::KernelRegistry registry = pl::standard_kernels();
+  registry.add({"counting_copy", "copies its input, counting the rows it computes",
+                [&](pl::NodeContext&) { return std::make_unique<CountingCopyNode>(rows); }});
+  const auto make = [&] {
+    return compile_yaml(R"(
+nodes:
+  - {name: src, kernel: source, params: {format: gray}}
+  - {name: copy, kernel: counting_copy, inputs: {in: src}}
+  - {name: smooth, kernel: conv3x3, params: {preset: smooth}, inputs: {in: copy}}
+outputs: [smooth]
+)",
+                        registry);
+  };
+  ASSERT_EQ(groups_of(make()), (std::vector<std::vector<std::string>>{{"copy", "smooth"}}));
+  const cv::Size size(40, 20);
+  const auto frames = frames_for(make(), size, 3);
+  const auto unfused = pl::run_frames(make(), frames, {.threads = 2, .fuse = false});
+  EXPECT_EQ(rows.load(), 3L * size.height);
+  rows = 0;
+  const auto fused = pl::run_frames(make(), frames, {.threads = 2, .fuse = true, .fused_stripe_rows = 1});
+  // One-row stripes of smooth each need three rows of copy, two at the frame's edges.
+  EXPECT_EQ(rows.load(), 3L * (3 * size.height - 2));
+  ASSERT_EQ(fused.size(), unfused.size());
+  for (size_t f = 0; f < fused.size(); ++f) {
+    expect_same_value(fused[f].outputs[0], unfused[f].outputs[0], "frame " + std::to_string(f));
+  }
+}
+
 TEST(Fusion, ExamplesEqualUnfused) {
-  for (const char* file : {"background_subtraction.yaml", "edges.yaml", "blobs.yaml"}) {
+  // The examples that have fused groups; blobs.yaml and marbles.yaml have none (FusionPlan above).
+  for (const char* file : {"background_subtraction.yaml", "edges.yaml"}) {
     SCOPED_TRACE(file);
     expect_fused_equals_unfused([&] { return compile_example(file); }, {45, 31});
   }

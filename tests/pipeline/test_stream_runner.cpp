@@ -2,7 +2,9 @@
 //
 // PrefetchingSource: frames come out in order; the inner source's error comes after every frame
 // read before it, once; stop() and the destructor end a reader blocked on a full queue; the stop
-// flag ends reading; paced reading accounts for every frame (taken or dropped).
+// flag ends reading; paced reading accounts for every frame (taken or dropped), a full queue keeps
+// the newest frame and counts the ones it replaced, and the lag is at least what a late start or a
+// slow source makes it and at most the time since the start.
 //
 // run_stream: over a generated MJPG video and over a scripted source, results equal run_frames'
 // bit for bit, in order, for several thread counts and read-ahead depths; a slow source loses
@@ -11,7 +13,8 @@
 // gone when run_stream returns (an endless source would otherwise be read on); the stop flag ends an
 // endless stream; reading never runs further ahead of delivery than the queue and the frames in
 // flight allow; real-time mode counts every frame of a finite source as processed or dropped, even
-// with a sink slow enough that frames are dropped while waiting to be handed over.
+// with a sink slow enough that frames are dropped while waiting to be handed over, drops all but a
+// few frames while the sink is blocked, and reports the lag of a source slower than the pace.
 //
 // Nothing is timed: slow parts sleep, but every expectation holds whatever the machine's speed.
 
@@ -258,7 +261,53 @@ TEST(PrefetchingSource, PacedReadingAccountsForEveryFrame) {
   }
   EXPECT_EQ(static_cast<std::int64_t>(got.size()) + source.dropped(), 40);
   for (size_t i = 1; i < got.size(); ++i) EXPECT_LT(got[i - 1], got[i]);
-  EXPECT_GE(source.max_lag_s(), 0);
+}
+
+TEST(PrefetchingSource, PacedReadingIntoAFullQueueKeepsTheNewestFrame) {
+  // Every frame is due already (the clock started 10 s ago) and nothing is taken until the source is
+  // exhausted: each frame read finds the one-frame queue full and replaces the frame in it, so 39
+  // are dropped and the last one is left, whatever the machine's speed. Each read also began at
+  // least 10 s - 39 / 2000 s after its due time, and no later than now.
+  ScriptedSource inner({.frames = 40});
+  const auto start = io::PrefetchingSource::Clock::now() - std::chrono::seconds(10);
+  io::PrefetchingSource source(inner, {.capacity = 1, .pace = 2000}, start);
+  for (int waited_ms = 0; inner.calls() <= 40 && waited_ms < 20000; ++waited_ms) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));  // the reader's 41st call finds the end
+  }
+  std::vector<std::int64_t> got;
+  while (auto f = source.next()) got.push_back(f->index);
+  const double since_start = std::chrono::duration<double>(io::PrefetchingSource::Clock::now() - start).count();
+  EXPECT_EQ(got, std::vector<std::int64_t>{39});
+  EXPECT_EQ(source.dropped(), 39);
+  EXPECT_GE(source.max_lag_s(), 10 - 39.0 / 2000);
+  EXPECT_LE(source.max_lag_s(), since_start);
+
+  // The same, with room for every frame: nothing is dropped, however late the reading.
+  ScriptedSource roomy({.frames = 40});
+  io::PrefetchingSource deep(roomy, {.capacity = 40, .pace = 2000}, start);
+  got.clear();
+  while (auto f = deep.next()) got.push_back(f->index);
+  EXPECT_EQ(got, iota(40));
+  EXPECT_EQ(deep.dropped(), 0);
+}
+
+TEST(PrefetchingSource, LagMeasuresASourceSlowerThanThePace) {
+  // Frames due every 10 ms from a source that takes at least 20 ms a frame, so the reader never
+  // waits: read k ends no earlier than 20 (k + 1) ms after the start, when its frame was due at
+  // 10 k ms. Over 10 frames the lag of the last is at least 110 ms, on any machine. And as every read
+  // takes longer than a period, no read's lag exceeds the last read's end less 90 ms, the last
+  // frame's due time: a lag counted from the start of the stream instead of each frame's due time
+  // would.
+  ScriptedSource inner({.frames = 10, .delay = std::chrono::milliseconds(20)});
+  const auto start = io::PrefetchingSource::Clock::now();
+  io::PrefetchingSource source(inner, {.capacity = 10, .pace = 100}, start);
+  std::int64_t taken = 0;
+  while (source.next()) ++taken;
+  const double since_start = std::chrono::duration<double>(io::PrefetchingSource::Clock::now() - start).count();
+  EXPECT_EQ(taken, 10);
+  EXPECT_EQ(source.dropped(), 0);
+  EXPECT_GE(source.max_lag_s(), 0.110);
+  EXPECT_LE(source.max_lag_s(), since_start - 0.090);
 }
 
 TEST(PrefetchingSource, RejectsAnEmptyQueue) {
@@ -513,6 +562,67 @@ TEST(StreamRunner, RealtimeCountsEveryFrameAsProcessedOrDropped) {
     EXPECT_EQ(stats.frames_processed + stats.frames_dropped, 50) << "sink " << sink_ms << " ms";
     EXPECT_EQ(static_cast<std::int64_t>(delivered.size()), stats.frames_processed);
     for (size_t i = 1; i < delivered.size(); ++i) EXPECT_LT(delivered[i - 1], delivered[i]);
+    // A read cannot lag its due time by more than the run has lasted.
     EXPECT_GE(stats.max_reader_lag_s, 0);
+    EXPECT_LE(stats.max_reader_lag_s, stats.seconds);
   }
+}
+
+TEST(StreamRunner, RealtimeDropsFramesWhileTheSinkIsBlocked) {
+  // The sink blocks on the first frame it gets until the reader has read the whole source (50 frames
+  // at 1000/s), so the driver, which delivers, takes nothing meanwhile. By then at most
+  // frames_in_flight + 1 frames have entered the pipeline or are in the driver's hands (a slot
+  // frees when the first frame completes, before its delivery, and a submit delivers before it
+  // admits); once the sink returns, the reader has ended with at most the newest frame waiting. So
+  // at most frames_in_flight + 2 frames are processed and the other 46 or more are dropped, however
+  // fast or slow the machine. (The first frame delivered need not be frame 0: on a slow start
+  // frame 1 may already have replaced it.)
+  const std::int64_t frames = 50;
+  const int frames_in_flight = 2;
+  ScriptedSource source({.frames = frames});
+  pl::StreamOptions options;
+  options.realtime = true;
+  options.fps = 1000;
+  options.executor = {.threads = 2, .frames_in_flight = frames_in_flight};
+  pl::RunStats stats;
+  std::vector<std::int64_t> delivered;
+  pl::run_stream(
+      source, blob_graph(), options,
+      [&](const pl::FrameResult& r) {
+        delivered.push_back(r.index);
+        if (delivered.size() != 1) return;
+        // The reader's call after the last frame finds the end. (The cap only keeps a broken reader
+        // from hanging the test; the expectations below do not depend on it.)
+        for (int waited_ms = 0; source.calls() <= frames && waited_ms < 20000; ++waited_ms) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+      },
+      stats);
+  EXPECT_EQ(source.calls(), frames + 1);
+  EXPECT_EQ(stats.frames_read, frames);
+  EXPECT_EQ(stats.frames_processed + stats.frames_dropped, frames);
+  EXPECT_GE(stats.frames_processed, 1);
+  EXPECT_LE(stats.frames_processed, frames_in_flight + 2);
+  EXPECT_GE(stats.frames_dropped, frames - frames_in_flight - 2);
+  EXPECT_EQ(static_cast<std::int64_t>(delivered.size()), stats.frames_processed);
+  for (size_t i = 1; i < delivered.size(); ++i) EXPECT_LT(delivered[i - 1], delivered[i]);
+}
+
+TEST(StreamRunner, RealtimeReportsHowFarASlowSourceFallsBehind) {
+  // A source that takes at least 20 ms a frame, paced at 100 frames/s: read k ends at least
+  // 20 (k + 1) ms after the start, its frame due at 10 k ms, so over 10 frames the reader falls at
+  // least 110 ms behind, on any machine; and by no more than the run lasted less the last frame's due
+  // time, 90 ms (PrefetchingSource.LagMeasuresASourceSlowerThanThePace says why).
+  ScriptedSource source({.frames = 10, .delay = std::chrono::milliseconds(20)});
+  pl::StreamOptions options;
+  options.realtime = true;
+  options.fps = 100;
+  options.executor = {.threads = 2, .frames_in_flight = 4};
+  pl::RunStats stats;
+  pl::run_stream(
+      source, blob_graph(), options, [](const pl::FrameResult&) {}, stats);
+  EXPECT_EQ(stats.frames_read, 10);
+  EXPECT_EQ(stats.frames_processed + stats.frames_dropped, 10);
+  EXPECT_GE(stats.max_reader_lag_s, 0.110);
+  EXPECT_LE(stats.max_reader_lag_s, stats.seconds - 0.090);
 }

@@ -1,4 +1,5 @@
-// SCARA kinematics: FK(IK(p)) = p over the workspace (grid and random poses), IK(FK(q)) = q within
+// SCARA kinematics: joint angles of 0, 45 and 90 deg give the poses worked out by hand (two
+// geometries, both elbow bends), FK(IK(p)) = p over the workspace (grid and random poses), IK(FK(q)) = q within
 // the limits, one elbow configuration everywhere, unreachable poses rejected with messages that
 // name the numbers, geometry validation, and the workspace sizing rule for several workspaces.
 
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "sim/arm/scara.hpp"
 #include "sim/arm/scara_sizing.hpp"
@@ -73,6 +75,77 @@ TEST(ArmKinematics, DefaultGeometryIsTheOneSizedForTheDefaultWorkspace) {
   const Scara arm(defaults);
   EXPECT_NEAR(arm.max_reach(), 750 * std::cos(radians(0.5)), 1e-12);
   EXPECT_NEAR(arm.min_reach(), 750 * std::cos(radians(85)), 1e-12);
+}
+
+// Absolute poses worked out by hand from the model in scara.hpp (elbow = base + l1 (cos q1, sin q1),
+// tool = elbow + l2 (cos(q1 + q2), sin(q1 + q2)), heading q1 + q2 + q3), for joint angles whose sines
+// and cosines are 0, +-1 or sqrt(2)/2. The round trips above hold for any self-consistent pair of FK
+// and IK (links swapped in both, a heading offset in both, a mirrored arm); these do not.
+struct KnownPose {
+  JointAngles q;  ///< degrees here, converted below
+  Eigen::Vector2d elbow;
+  Pose2 tool;          ///< theta in degrees
+  bool within_limits;  ///< IK must give q back
+};
+
+void expect_known_poses(const ScaraGeometry& g, const std::vector<KnownPose>& poses) {
+  const Scara arm(g);
+  for (const KnownPose& k : poses) {
+    const JointAngles q{radians(k.q.shoulder), radians(k.q.elbow), radians(k.q.roll)};
+    SCOPED_TRACE(testing::Message() << "q = (" << k.q.shoulder << ", " << k.q.elbow << ", " << k.q.roll << ") deg");
+    const Pose2 p = arm.forward(q);
+    EXPECT_NEAR(p.x, k.tool.x, kPositionTolerance);
+    EXPECT_NEAR(p.y, k.tool.y, kPositionTolerance);
+    EXPECT_NEAR(p.theta, radians(k.tool.theta), kHeadingTolerance);
+    const Eigen::Vector2d e = arm.elbow_position(q);
+    EXPECT_NEAR(e.x(), k.elbow.x(), kPositionTolerance);
+    EXPECT_NEAR(e.y(), k.elbow.y(), kPositionTolerance);
+    if (!k.within_limits) continue;
+    const JointAngles back = arm.inverse({k.tool.x, k.tool.y, radians(k.tool.theta)});
+    EXPECT_NEAR(back.shoulder, q.shoulder, 1e-12);
+    EXPECT_NEAR(back.elbow, q.elbow, 1e-12);
+    EXPECT_NEAR(back.roll, q.roll, 1e-12);
+  }
+}
+
+TEST(ArmKinematics, KnownJointAnglesGiveTheHandComputedPoses) {
+  // The default arm: base (250, -125), both links 375 mm.
+  const double h = 375 * std::numbers::sqrt2 / 2;  // 265.165... mm, a link at 45 deg
+  expect_known_poses(
+      ScaraGeometry{},
+      {
+          {{0, 0, 0}, {625, -125}, {1000, -125, 0}, false},                    // stretched East (elbow below its limit)
+          {{90, 0, 0}, {250, 250}, {250, 625, 90}, false},                     // stretched North
+          {{0, 90, 0}, {625, -125}, {625, 250, 90}, true},                     // upper arm East, forearm North
+          {{90, 90, 0}, {250, 250}, {-125, 250, 180}, true},                   // upper arm North, forearm West
+          {{90, 90, -90}, {250, 250}, {-125, 250, 90}, true},                  // the same, tool turned back to North
+          {{45, 90, 0}, {250 + h, -125 + h}, {250, -125 + 2 * h, 135}, true},  // tool straight North of the base
+          // At the shoulder's limits (IK there is a matter of rounding): forearm South, heading not
+          // wrapped by FK; forearm East.
+          {{180, 90, 45}, {-125, -125}, {-125, -500, 315}, false},
+          {{-90, 90, 0}, {250, -500}, {625, -500, 0}, false},
+      });
+}
+
+TEST(ArmKinematics, KnownJointAnglesGiveTheHandComputedPosesWithUnequalLinks) {
+  // Unequal links tell l1 from l2: swapping them anywhere moves every pose below.
+  ScaraGeometry g;
+  g.base = {100, -50};
+  g.l1 = 420;
+  g.l2 = 310;
+  expect_known_poses(g, {
+                            {{0, 90, 0}, {520, -50}, {520, 260, 90}, true},
+                            {{90, 90, 0}, {100, 370}, {-210, 370, 180}, true},
+                            {{90, 90, 30}, {100, 370}, {-210, 370, 210}, true},
+                            {{0, 0, 0}, {520, -50}, {830, -50, 0}, false},
+                        });
+  const double s = std::numbers::sqrt2 / 2;
+  g.bend = ElbowBend::negative;  // the elbow to the other side: q2 = -90 deg
+  g.elbow = {radians(-170), radians(-1)};
+  expect_known_poses(g, {
+                            {{90, -90, 0}, {100, 370}, {410, 370, 0}, true},
+                            {{135, -90, 0}, {100 - 420 * s, -50 + 420 * s}, {100 - 110 * s, -50 + 730 * s, 45}, true},
+                        });
 }
 
 TEST(ArmKinematics, EveryPointOfTheDefaultWorkspaceAndItsMarginRoundTripsOnAOneMillimetreGrid) {
