@@ -1,17 +1,20 @@
 #!/usr/bin/env bash
 # The test suite under the sanitizers (issue 18): every report is an error.
 #
-#   scripts/sanitize.sh [address|thread|all]     (default: all)
+#   scripts/sanitize.sh [address|thread|all]     (default: address; CI runs address)
 #
 # address: the whole suite built with -fsanitize=address,undefined in build-asan.
 # thread:  the pipeline and navigator suites (the executor's threads, the trials' parallel journeys)
-#          built with -fsanitize=thread in build-tsan.
+#          built with -fsanitize=thread in build-tsan. NOT CLEAN YET, so not in CI: Debian's libtbb
+#          is not built with TSan, so every hand-over through a TBB task (an image written by one
+#          thread, read by the worker the task runs on) is reported as a race. Needs oneTBB built
+#          with TSan (issue 18).
 # Both trees are built with -O1 -g (fast enough to run, exact enough to point at a line) through
 # ccache when it is there, so a second run on the same machine recompiles only what changed.
 # Run scripts/setup.sh first (CI does: the README's test command before this).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-what="${1:-all}"
+what="${1:-address}"
 case "$what" in address | thread | all) ;; *)
   echo "scripts/sanitize.sh: unknown sanitizer '$what' (address, thread or all)" >&2
   exit 2
@@ -39,7 +42,12 @@ if [[ "$what" == address || "$what" == all ]]; then
   export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$suppressions/ubsan.supp"
   export LSAN_OPTIONS="suppressions=$suppressions/lsan.supp"
-  ctest --test-dir build-asan --output-on-failure -j "$jobs" --timeout 1800
+  # Skipped, the only two: the rate guards (NavigationRates.*: 5,000 simulated journeys, over 30 min
+  # under ASan) and the planner's brute force over every simple step sequence (8 min). The code they
+  # run runs under ASan in the shorter Rig, Journeys, NavCli and MapMaker tests.
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" --timeout 1800 \
+    -E '^(NavigationRates\..*|MapMaker\.ShortestRouteEqualsBruteForceOverAllSimpleStepSequences)$'
+
   unset ASAN_OPTIONS UBSAN_OPTIONS LSAN_OPTIONS
 fi
 

@@ -37,7 +37,10 @@ struct QocRange {
 
 class WorldViews {
  public:
+  /// Keeps a pointer to `workspace`, which must outlive the views: a temporary cannot be given
+  /// (`WorldViews(workspace_of(world), ...)` read a dead stack frame, found by ASan: issue 18).
   WorldViews(const Workspace& workspace, const WindowModel& window);
+  WorldViews(const Workspace&& workspace, const WindowModel& window) = delete;
 
   const Workspace& workspace() const { return *workspace_; }
   const WindowModel& window() const { return window_; }

@@ -98,7 +98,8 @@ TEST_F(Recovery, ADeadEndSendsTheNavigatorBackToThePreviousEntrysNextCandidate) 
   // A forced `lost`: the map means S -> A -> B, but from S the most isolated object is B, and
   // nothing is in view of B held at SE. Back at S the navigator takes the next candidate, A, from
   // which B is the obvious landmark.
-  const mapmaker::WorldViews views(test_rig::workspace_of(world_), WindowModel::with_side(50));
+  const mapmaker::Workspace workspace = test_rig::workspace_of(world_);  // the views point into it
+  const mapmaker::WorldViews views(workspace, WindowModel::with_side(50));
   ASSERT_TRUE(views.visible({B, Corner::SE}).size() == 1);
   ASSERT_EQ(views.obvious({A, Corner::SE}), B);
   const CustomMap map = parse_custom_map("((*, SW), (Isol, SE), (Obvious, -))");
@@ -210,7 +211,8 @@ TEST(SlideRetry, ASlideThatPassesBesideItsGoalIsTriedAgainBesideTheTrack) {
   // 3 mm beyond it (no cap in view), Y beside G gives it QOC 1, X far East inside the band (QOC 0).
   constexpr std::size_t kS = 0, kG = 2, kX = 4;
   world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
-  const mapmaker::WorldViews views(test_rig::workspace_of(world), WindowModel::with_side(50));
+  const mapmaker::Workspace workspace = test_rig::workspace_of(world);  // the views point into it
+  const mapmaker::WorldViews views(workspace, WindowModel::with_side(50));
   ASSERT_EQ(views.qoc(kG), 1);
   ASSERT_EQ(views.qoc(kX), 0);
   const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:250, (1, -), -))");
