@@ -54,15 +54,10 @@ inline std::string describe(const std::vector<std::string>& args) {
   return s;
 }
 
-/// Runs NEOPIPE_BINARY with `args`, stdin from /dev/null, stdout and stderr captured separately
-/// (through files, so a chatty child never blocks on a full pipe). Kills it after kTimeoutSeconds.
-inline RunResult run_neopipe(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const fs::path capture =
-      fs::temp_directory_path() / ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
-  const std::string out_path = capture.string() + ".out";
-  const std::string err_path = capture.string() + ".err";
-
+/// Starts NEOPIPE_BINARY with `args` and stdin from /dev/null; stdout and stderr go to the files
+/// given, or stay the test's when empty. Returns the child's pid, or 0 (and a test failure).
+inline pid_t spawn_neopipe(const std::vector<std::string>& args, const std::string& out_path = "",
+                           const std::string& err_path = "") {
   std::vector<std::string> argv_s{NEOPIPE_BINARY};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -72,16 +67,33 @@ inline RunResult run_neopipe(const std::vector<std::string>& args) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!out_path.empty()) {
+    posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
+  if (!err_path.empty()) {
+    posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  }
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  RunResult r;
   if (rc != 0) {
     ADD_FAILURE() << "posix_spawn(" << argv[0] << ") failed: " << std::strerror(rc);
-    return r;
+    return 0;
   }
+  return pid;
+}
+
+/// Runs NEOPIPE_BINARY with `args`, stdin from /dev/null, stdout and stderr captured separately
+/// (through files, so a chatty child never blocks on a full pipe). Kills it after kTimeoutSeconds.
+inline RunResult run_neopipe(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const fs::path capture =
+      fs::temp_directory_path() / ("neopipe_cli_capture_" + std::to_string(getpid()) + "_" + std::to_string(counter++));
+  const std::string out_path = capture.string() + ".out";
+  const std::string err_path = capture.string() + ".err";
+  const pid_t pid = spawn_neopipe(args, out_path, err_path);
+  RunResult r;
+  if (pid == 0) return r;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
   int status = 0;
   for (;;) {

@@ -56,16 +56,8 @@ TEST_F(RunFaults, AFullDiskIsOneLineNamingTheFileAndTheCause) {
 
 // Starts a paced run, waits until it has written a few frames, sends `signal`, and checks the end.
 void stop_mid_run(const std::string& table, int signal, int expected_status) {
-  std::vector<std::string> args{NEOPIPE_BINARY, "run", kVideo, "--realtime", "--fps", "50", "--out", table, "-q"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  const pid_t pid = spawn_neopipe({"run", kVideo, "--realtime", "--fps", "50", "--out", table, "-q"});
+  ASSERT_NE(pid, 0);
   // Paced at 50 frames/s the video lasts 16 s: the signal lands mid-run however loaded the machine.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
   while (whole_frames(slurp(table)) < 5 && std::chrono::steady_clock::now() < deadline) {
