@@ -36,61 +36,6 @@ Eigen::Vector2d parse_size(const std::string& text) {
   return {w, h};
 }
 
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t begin = 0;
-  for (;;) {
-    const std::size_t comma = line.find(',', begin);
-    fields.push_back(line.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
-    if (comma == std::string::npos) return fields;
-    begin = comma + 1;
-  }
-}
-
-// The first frame's blobs of a table written by `neopipe run --calib`: their X,Y are the objects.
-std::vector<Eigen::Vector2d> read_blob_positions(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw mm::MapError(fmt::format("{}: cannot open the blob table", path));
-  std::string line;
-  if (!std::getline(in, line)) throw mm::MapError(fmt::format("{}: empty file, expected a blob table", path));
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  const std::vector<std::string> header = split_csv(line);
-  const auto column = [&](const std::string& name) {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) {
-      throw mm::MapError(
-          fmt::format("{}: no '{}' column; the map-maker needs workspace positions: make the table "
-                      "with neopipe run --calib CALIB --format csv",
-                      path, name));
-    }
-    return static_cast<std::size_t>(it - header.begin());
-  };
-  const std::size_t fx = column("X");
-  const std::size_t fy = column("Y");
-  const std::size_t ff = column("frame");
-  std::vector<Eigen::Vector2d> objects;
-  std::string first_frame;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const std::vector<std::string> f = split_csv(line);
-    if (f.size() != header.size()) {
-      throw mm::MapError(fmt::format("{}:{}: {} fields, the header has {}", path, number, f.size(), header.size()));
-    }
-    if (first_frame.empty()) first_frame = f[ff];
-    if (f[ff] != first_frame) break;
-    double x = 0;
-    double y = 0;
-    std::istringstream xs(f[fx]);
-    std::istringstream ys(f[fy]);
-    if (!(xs >> x) || !(ys >> y) || !std::isfinite(x) || !std::isfinite(y)) {
-      throw mm::MapError(fmt::format("{}:{}: X,Y '{},{}' are not numbers", path, number, f[fx], f[fy]));
-    }
-    objects.emplace_back(x, y);
-  }
-  return objects;
-}
-
 mm::Workspace load_workspace(const MapArgs& a) {
   if (a.world.empty() == a.blobs.empty()) throw UsageError{"give exactly one of --world FILE and --blobs FILE"};
   if (!a.world.empty()) {
@@ -104,7 +49,7 @@ mm::Workspace load_workspace(const MapArgs& a) {
     mm::check_workspace(w, a.world);
     return w;
   }
-  mm::Workspace w{a.size.empty() ? Eigen::Vector2d(500, 500) : parse_size(a.size), read_blob_positions(a.blobs)};
+  mm::Workspace w{a.size.empty() ? Eigen::Vector2d(500, 500) : parse_size(a.size), mm::read_blob_positions(a.blobs)};
   mm::check_workspace(w, a.blobs);
   return w;
 }

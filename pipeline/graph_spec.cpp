@@ -29,7 +29,7 @@ class Reader {
     g.origin = origin_;
     if (!root.IsMap()) fail(root, "a graph spec is a map with 'nodes' and 'outputs'");
     for (const auto& kv : root) {
-      const auto key = kv.first.as<std::string>();
+      const std::string key = key_of(kv.first);
       if (key != "name" && key != "description" && key != "nodes" && key != "outputs") {
         fail(kv.first, "unknown key '" + key + "' (expected name, description, nodes, outputs)");
       }
@@ -63,7 +63,7 @@ class Reader {
     NodeSpec spec;
     spec.where = where(n);
     for (const auto& kv : n) {
-      const auto key = kv.first.as<std::string>();
+      const std::string key = key_of(kv.first);
       if (key != "name" && key != "kernel" && key != "params" && key != "inputs") {
         fail(kv.first, "unknown key '" + key + "' in a node (expected name, kernel, params, inputs)");
       }
@@ -102,7 +102,7 @@ class Reader {
     }
     if (!v.IsMap()) fail(v, "an input is a port (\"node\" or \"node.port\") or a map {from, delay, initial}");
     for (const auto& kv : v) {
-      const auto key = kv.first.as<std::string>();
+      const std::string key = key_of(kv.first);
       if (key != "from" && key != "delay" && key != "initial") {
         fail(kv.first, "unknown key '" + key + "' in an input (expected from, delay, initial)");
       }
@@ -125,6 +125,14 @@ class Reader {
         b.initial = PortRef::parse(text, where(init));
       }
     }
+  }
+
+  // A map key as text. YAML allows any node as a key ("[a, b]: 1", "? {a: 1}"), and yaml-cpp's
+  // as<std::string>() throws its own exception for those, which would escape as a crash instead of
+  // a GraphError (found by fuzz/fuzz_graph_spec.cpp).
+  std::string key_of(const YAML::Node& key) const {
+    if (!key.IsScalar()) fail(key, "a key must be a single name");
+    return key.Scalar();
   }
 
   std::string scalar(const YAML::Node& n, const std::string& what) {

@@ -15,7 +15,7 @@ class NeighbourGrid {
  public:
   /// `cell` must be at least the largest distance any_within will be asked about.
   NeighbourGrid(const Eigen::Vector2d& size, double cell)
-      : cell_(std::max(cell, 1e-9)),
+      : cell_(std::max({cell, 1e-9, size.x() / kMaxCellsPerSide, size.y() / kMaxCellsPerSide})),
         cols_(std::max(1, static_cast<int>(std::ceil(size.x() / cell_)))),
         rows_(std::max(1, static_cast<int>(std::ceil(size.y() / cell_)))),
         cells_(static_cast<std::size_t>(cols_) * static_cast<std::size_t>(rows_)) {}
@@ -52,6 +52,12 @@ class NeighbourGrid {
   }
 
  private:
+  // Cells are made larger than asked when the workspace is over this many cells a side: a world file
+  // may give any finite size, and [2e59, 100] mm with 5 mm marbles asked for a cell count beyond
+  // int (undefined behaviour) and beyond memory (found by fuzz/fuzz_world.cpp). Larger cells stay
+  // correct (a cell need only be at least the query distance); the grid is at most 24 MiB.
+  static constexpr double kMaxCellsPerSide = 1024;
+
   struct Entry {
     Eigen::Vector2d p;
     std::size_t id;

@@ -19,7 +19,7 @@ class Reader {
   World read(const YAML::Node& root) const {
     if (!root.IsMap()) fail(root, "a world file is a map with 'size' and 'objects'");
     for (const auto& kv : root) {
-      const auto key = kv.first.as<std::string>();
+      const std::string key = key_of(kv.first);
       if (key != "size" && key != "objects" && key != "marble_diameter" && key != "min_gap" && key != "seed") {
         fail(kv.first, "unknown key '" + key + "' (expected size, objects, marble_diameter, min_gap, seed)");
       }
@@ -63,6 +63,13 @@ class Reader {
   [[noreturn]] void fail_at(const YAML::Mark& m, const std::string& why) const {
     if (m.is_null() || m.line < 0) throw WorldError(path_ + ": " + why);
     throw WorldError(fmt::format("{}:{}:{}: {}", path_, m.line + 1, m.column + 1, why));
+  }
+  // A map key as text. YAML allows any node as a key ("[0, 0]: 1"), and yaml-cpp's
+  // as<std::string>() throws its own exception for those, which would escape as a crash instead of
+  // a WorldError (found by fuzz/fuzz_world.cpp).
+  std::string key_of(const YAML::Node& key) const {
+    if (!key.IsScalar()) fail(key, "a key must be a single name");
+    return key.Scalar();
   }
   double number(const YAML::Node& n, const std::string& what) const {
     if (!n.IsScalar()) fail(n, what + ": expected a number");

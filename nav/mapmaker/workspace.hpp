@@ -24,4 +24,10 @@ struct Workspace {
 /// or non-positive size, an object off the workspace or not finite, two objects at the same place.
 void check_workspace(const Workspace& workspace, const std::string& origin);
 
+/// The objects of a blob table written by `neopipe run --calib` (CSV with a header naming at least
+/// the columns frame, X and Y): the X,Y of the first frame's blobs, in table order. Throws MapError
+/// naming the file (and the line) for a file that cannot be read, a missing column, a line with
+/// another number of fields than the header, or an X,Y that is not a finite number.
+std::vector<Eigen::Vector2d> read_blob_positions(const std::string& path);
+
 }  // namespace neopipe::nav::mapmaker

@@ -72,7 +72,11 @@ int find_video_stream(const AVFormatContext& fmt) {
 int display_rotation(const AVStream& stream) {
   const std::uint8_t* matrix = av_stream_get_side_data(&stream, AV_PKT_DATA_DISPLAYMATRIX, nullptr);
   if (matrix == nullptr) return 0;
-  int angle = -cvRound(av_display_rotation_get(reinterpret_cast<const std::int32_t*>(matrix)));
+  const double counter_clockwise = av_display_rotation_get(reinterpret_cast<const std::int32_t*>(matrix));
+  // A degenerate matrix (a zero scale) gives NaN, which cvRound turns into INT_MIN, whose negation
+  // is undefined (found by fuzz/fuzz_video.cpp): such a matrix names no turn.
+  if (!std::isfinite(counter_clockwise)) return 0;
+  int angle = -cvRound(counter_clockwise);
   if (angle < 0) angle += 360;
   return angle;
 }
