@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # The test suite under the sanitizers (issue 18): every report is an error.
 #
-#   scripts/sanitize.sh [address|thread|all]     (default: address; CI runs address)
+#   scripts/sanitize.sh [address|thread|all]     (default: address; CI runs all)
 #
 # address: the whole suite built with -fsanitize=address,undefined in build-asan.
-# thread:  the pipeline and navigator suites (the executor's threads, the trials' parallel journeys)
-#          built with -fsanitize=thread in build-tsan. NOT CLEAN YET, so not in CI: Debian's libtbb
-#          is not built with TSan, so every hand-over through a TBB task (an image written by one
-#          thread, read by the worker the task runs on) is reported as a race. Needs oneTBB built
-#          with TSan (issue 18).
+# thread:  the pipeline, navigator and rig suites (the executor's threads, the trials' parallel
+#          journeys) built with -fsanitize=thread in build-tsan, against a oneTBB built with TSan from
+#          Debian's source of the installed version (scripts/sanitizers/onetbb-tsan.sh): Debian's
+#          libtbb is not instrumented, and every hand-over through a task would look like a race.
 # Both trees are built with -O1 -g (fast enough to run, exact enough to point at a line) through
 # ccache when it is there, so a second run on the same machine recompiles only what changed.
 # Run scripts/setup.sh first (CI does: the README's test command before this).
@@ -30,9 +29,9 @@ fi
 jobs="$(nproc)"
 suppressions="$PWD/scripts/sanitizers"
 
-configure() {  # folder, sanitizers
+configure() {  # folder, sanitizers, more cmake options
   cmake -S . -B "$1" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-    -DNEOPIPE_SANITIZE="$2" "${launcher[@]}" > /dev/null
+    -DNEOPIPE_SANITIZE="$2" "${launcher[@]}" "${@:3}" > /dev/null
 }
 
 if [[ "$what" == address || "$what" == all ]]; then
@@ -52,9 +51,15 @@ if [[ "$what" == address || "$what" == all ]]; then
 fi
 
 if [[ "$what" == thread || "$what" == all ]]; then
-  echo "== thread: the pipeline and navigator suites (build-tsan)"
-  configure build-tsan thread
+  echo "== thread: the pipeline, navigator and rig suites (build-tsan)"
+  scripts/sanitizers/onetbb-tsan.sh "$PWD/build-tsan/onetbb"
+  configure build-tsan thread -DTBB_DIR="$PWD/build-tsan/onetbb/lib/cmake/TBB"
   cmake --build build-tsan -j "$jobs" --target neopipe_pipeline_tests neopipe_navigator_tests neopipe_rig_tests
+  # The binaries find the instrumented libtbb through their run path; say so if they do not.
+  if ! ldd build-tsan/tests/neopipe_pipeline_tests | grep -q "build-tsan/onetbb/lib/libtbb"; then
+    echo "scripts/sanitize.sh: build-tsan does not link the TSan build of oneTBB" >&2
+    exit 1
+  fi
   export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$suppressions/tsan.supp"
   # Each binary runs whole (one process): the threads of one test meet the pools another left.
   for suite in pipeline navigator; do

@@ -18,6 +18,7 @@ packages=(
   libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # FFmpeg's libraries: neopipe's video reader
   ffmpeg                 # OpenCV's video back end; the tests make sample videos with it
   opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
+  dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source
   ccache                 # rebuilds (and the sanitizer trees of scripts/sanitize.sh) recompile only what changed
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes for clang (scripts/fuzz.sh)
 )
