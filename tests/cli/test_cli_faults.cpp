@@ -1,11 +1,12 @@
 // `neopipe run` when the world around it fails (issue 18, "Load and faults"): a full disk, a signal
-// mid-run, a closed output pipe. Each ends with a clean error or a clean end, the documented exit
-// status, and a table whose rows are whole frames, every line complete.
+// mid-run, a closed output pipe, an input cut short while it is read. Each ends with a clean error or a clean end, the
+// documented exit status, and a table whose rows are whole frames, every line complete.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -79,6 +80,34 @@ TEST_F(RunFaults, SigtermMidRunWritesEveryFrameReadAndExits143) {
 
 TEST_F(RunFaults, CtrlCMidRunWritesEveryFrameReadAndExits130) {
   stop_mid_run(file("i.csv"), SIGINT, 130);
+}
+
+// The input is cut to a third while a paced run reads it (a download or a copy that failed, a
+// recording rotated away): the frames before the cut are written whole, and the run ends with one
+// line naming the file and where decoding stopped, exit 1, after the summary.
+TEST_F(RunFaults, AnInputTruncatedWhileReadEndsWithOneLineAndWholeRows) {
+  const std::string input = file("cut.avi");
+  fs::copy_file(kVideo, input);
+  const std::string table = file("cut.csv");
+  const std::string err = file("cut.err");
+  const pid_t pid = spawn_neopipe({"run", input, "--realtime", "--fps", "50", "--out", table}, "", err);
+  ASSERT_NE(pid, 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
+  while (whole_frames(slurp(table)) < 5 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_EQ(::truncate(input.c_str(), static_cast<off_t>(fs::file_size(input) / 3)), 0);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string messages = slurp(err);
+  EXPECT_NE(messages.find("neopipe run: error: " + input + ": decoding stopped at frame "), std::string::npos)
+      << messages;
+  EXPECT_NE(messages.find("(truncated or corrupt video)\n"), std::string::npos) << messages;
+  const std::int64_t frames = whole_frames(slurp(table));
+  EXPECT_GE(frames, 5);
+  EXPECT_LT(frames, 795 / 2) << "a third of the file cannot hold half the frames";
 }
 
 // A reader that stops early (`| head -1`) ends the run as it ends any filter: SIGPIPE, status 141

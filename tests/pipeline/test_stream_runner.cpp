@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -539,24 +540,33 @@ TEST(StreamRunner, RejectsNoReadAhead) {
   EXPECT_EQ(source.calls(), 0);
 }
 
+namespace {
+
+// Runs `source` through the blob graph paced at `fps` on 2 threads with `frames_in_flight` frames
+// at once, `sink` taking each result.
+pl::RunStats run_paced(ScriptedSource& source, double fps, int frames_in_flight,
+                       const std::function<void(const pl::FrameResult&)>& sink) {
+  pl::StreamOptions options;
+  options.realtime = true;
+  options.fps = fps;
+  options.executor = {.threads = 2, .frames_in_flight = frames_in_flight};
+  pl::RunStats stats;
+  pl::run_stream(source, blob_graph(), options, sink, stats);
+  return stats;
+}
+
+}  // namespace
+
 TEST(StreamRunner, RealtimeCountsEveryFrameAsProcessedOrDropped) {
   // A sink slower than the pace: frames are dropped, at the pipeline or while waiting to be handed
   // over, and every one of them is counted.
   for (const int sink_ms : {0, 4}) {
     ScriptedSource source({.frames = 50});
-    pl::StreamOptions options;
-    options.realtime = true;
-    options.fps = 1000;
-    options.executor = {.threads = 2, .frames_in_flight = 2};
-    pl::RunStats stats;
     std::vector<std::int64_t> delivered;
-    pl::run_stream(
-        source, blob_graph(), options,
-        [&](const pl::FrameResult& r) {
-          delivered.push_back(r.index);
-          std::this_thread::sleep_for(std::chrono::milliseconds(sink_ms));
-        },
-        stats);
+    const pl::RunStats stats = run_paced(source, 1000, 2, [&](const pl::FrameResult& r) {
+      delivered.push_back(r.index);
+      std::this_thread::sleep_for(std::chrono::milliseconds(sink_ms));
+    });
     EXPECT_TRUE(stats.realtime);
     EXPECT_EQ(stats.frames_read, 50) << "sink " << sink_ms << " ms";
     EXPECT_EQ(stats.frames_processed + stats.frames_dropped, 50) << "sink " << sink_ms << " ms";
@@ -580,24 +590,16 @@ TEST(StreamRunner, RealtimeDropsFramesWhileTheSinkIsBlocked) {
   const std::int64_t frames = 50;
   const int frames_in_flight = 2;
   ScriptedSource source({.frames = frames});
-  pl::StreamOptions options;
-  options.realtime = true;
-  options.fps = 1000;
-  options.executor = {.threads = 2, .frames_in_flight = frames_in_flight};
-  pl::RunStats stats;
   std::vector<std::int64_t> delivered;
-  pl::run_stream(
-      source, blob_graph(), options,
-      [&](const pl::FrameResult& r) {
-        delivered.push_back(r.index);
-        if (delivered.size() != 1) return;
-        // The reader's call after the last frame finds the end. (The cap only keeps a broken reader
-        // from hanging the test; the expectations below do not depend on it.)
-        for (int waited_ms = 0; source.calls() <= frames && waited_ms < 20000; ++waited_ms) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-      },
-      stats);
+  const pl::RunStats stats = run_paced(source, 1000, frames_in_flight, [&](const pl::FrameResult& r) {
+    delivered.push_back(r.index);
+    if (delivered.size() != 1) return;
+    // The reader's call after the last frame finds the end. (The cap only keeps a broken reader
+    // from hanging the test; the expectations below do not depend on it.)
+    for (int waited_ms = 0; source.calls() <= frames && waited_ms < 20000; ++waited_ms) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  });
   EXPECT_EQ(source.calls(), frames + 1);
   EXPECT_EQ(stats.frames_read, frames);
   EXPECT_EQ(stats.frames_processed + stats.frames_dropped, frames);
@@ -614,13 +616,7 @@ TEST(StreamRunner, RealtimeReportsHowFarASlowSourceFallsBehind) {
   // least 110 ms behind, on any machine; and by no more than the run lasted less the last frame's due
   // time, 90 ms (PrefetchingSource.LagMeasuresASourceSlowerThanThePace says why).
   ScriptedSource source({.frames = 10, .delay = std::chrono::milliseconds(20)});
-  pl::StreamOptions options;
-  options.realtime = true;
-  options.fps = 100;
-  options.executor = {.threads = 2, .frames_in_flight = 4};
-  pl::RunStats stats;
-  pl::run_stream(
-      source, blob_graph(), options, [](const pl::FrameResult&) {}, stats);
+  const pl::RunStats stats = run_paced(source, 100, 4, [](const pl::FrameResult&) {});
   EXPECT_EQ(stats.frames_read, 10);
   EXPECT_EQ(stats.frames_processed + stats.frames_dropped, 10);
   EXPECT_GE(stats.max_reader_lag_s, 0.110);
