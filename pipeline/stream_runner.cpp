@@ -77,7 +77,9 @@ void run_stream(io::FrameSource& source, CompiledGraph graph, const StreamOption
     prefetch.pace = options.fps > 0 ? options.fps : (source.fps() > 0 ? source.fps() : 30.0);
     stats.realtime = true;
   }
-  const auto start = Clock::now();
+  // Set once the executor is built: the pace (and the run's time) starts when the pipeline can take
+  // a frame, so a slow start-up does not make the first frames late and drop them.
+  Clock::time_point start;
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   Executor ex(std::move(graph), options.executor, [&](FrameResult&& r) {
     ++stats.frames_processed;
@@ -87,6 +89,7 @@ void run_stream(io::FrameSource& source, CompiledGraph graph, const StreamOption
     stats.seconds = elapsed();
     if (options.progress) options.progress(stats);
   });
+  start = Clock::now();
   std::optional<io::PrefetchingSource> reader;
   ReaderDrops drops;
   const auto stop_reader = [&] {
