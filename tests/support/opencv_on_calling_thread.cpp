@@ -18,8 +18,8 @@ class OpenCvOnCallingThread : public ::testing::Environment {
 };
 
 // gtest_main's main() runs the tests after static initialisation, so registering here reaches it.
-// GoogleTest takes ownership of the environment.
+// GoogleTest takes ownership of the environment (its API takes a raw pointer).
 [[maybe_unused]] ::testing::Environment* const environment =
-    ::testing::AddGlobalTestEnvironment(new OpenCvOnCallingThread);
+    ::testing::AddGlobalTestEnvironment(new OpenCvOnCallingThread);  // NOLINT(cppcoreguidelines-owning-memory)
 
 }  // namespace
