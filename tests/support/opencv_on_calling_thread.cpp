@@ -8,6 +8,7 @@
 // thread removes those false reports; neopipe's own threads (the executor's stripes and groups, the
 // trials' parallel journeys) still run on the instrumented oneTBB, as in a normal build.
 #include <gtest/gtest.h>
+
 #include <opencv2/core/utility.hpp>
 
 namespace {
