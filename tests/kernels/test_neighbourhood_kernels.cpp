@@ -276,6 +276,24 @@ TEST(Conv3x3, ShiftedMatchesReferenceForEveryShiftAndBorder) {
   }
 }
 
+// Rows wide enough for the SIMD interior (more than a vector of pixels plus the two border pixels,
+// on every target), with weights on both sides of the 16-bit/32-bit choice: sums_fit_16_bits must
+// send sums beyond -32768..32767 to the 32-bit path (tests/mutation/mutants.json, K08).
+TEST(Conv3x3, WideRowsMatchReferenceOnBothSimdPaths) {
+  cv::RNG rng(kSeed + 1);
+  const cv::Mat src = random_image(rng, {203, 9});
+  const cv::Mat white(5, 203, CV_8UC1, cv::Scalar(255));
+  for (int shift : {0, 4, 9, 16}) {
+    for (const auto& border : all_borders()) {
+      for (int max_abs : {3, 14, 20, 28, 300, 65535})
+        expect_conv_matches_reference(src, conv(random_weights(rng, max_abs), shift, border));
+    }
+    // 9 * 255 * 20 = 45900: over int16's range, under uint16's.
+    expect_conv_matches_reference(white, conv({20, 20, 20, 20, 20, 20, 20, 20, 20}, shift));
+    expect_conv_matches_reference(white, conv({-20, -20, -20, -20, -20, -20, -20, -20, -20}, shift));
+  }
+}
+
 TEST(Conv3x3, RoundsHalvesTowardPlusInfinity) {
   // Centre weight +-1, shift 1: v / 2 with halves rounded up, for v = 0..255 and its negation.
   cv::Mat ramp(1, 256, CV_8UC1);

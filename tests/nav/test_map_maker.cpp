@@ -150,6 +150,25 @@ TEST(MapMaker, FarAndNearStepsExtendThePapersAndNeverMakeTheBestRouteWorse) {
   EXPECT_GT(better, 0) << "the extension never helped";
 }
 
+// The steps leaving a placement are listed farthest landmark first: the planner breaks ties by
+// insertion order, so that is the preference among equal routes (tests/mutation/mutants.json, N22).
+TEST(MapMaker, StepsLeavingAPlacementComeFarthestLandmarkFirst) {
+  const Workspace w = random_workspace(120, 400, 5, 6);
+  const WorldViews views(w, WindowModel{});
+  const StepTable table(views, NavigatorErrors{}, true);
+  int compared = 0;
+  for (std::uint32_t node = 0; node < 4 * views.object_count(); ++node) {
+    const auto [first, last] = table.range(node);
+    for (std::uint32_t i = first; i + 1 < last; ++i) {
+      const Step& a = table.steps()[i];
+      const Step& b = table.steps()[i + 1];
+      ASSERT_GE(a.landmark_distance, b.landmark_distance) << "node " << node << ", steps " << i << " and " << i + 1;
+      compared += a.landmark_distance > b.landmark_distance ? 1 : 0;
+    }
+  }
+  EXPECT_GT(compared, 50);
+}
+
 TEST(MapMaker, TheThreeCriteriaOrderAsThePaperFinds) {
   const MapMaker maker(random_workspace(150, 400, 42, 6), MapMakerOptions{});
   int compared = 0;

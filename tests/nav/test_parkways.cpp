@@ -141,6 +141,30 @@ TEST(Trajectories, HandMadeSlideFindsTheFirstObjectToEnter) {
   EXPECT_FALSE(trajectory_from(views, {3, Corner::SE}, Description::Isol, Direction::positive));
 }
 
+// Two objects entering at exactly the same slide: the one preferred from the reference (farther,
+// then larger x, then larger y) is the goal, whichever id or grid cell it has
+// (tests/mutation/mutants.json, N19).
+TEST(Trajectories, ExactTiesGoToThePreferredObject) {
+  // R at SW (window [97.5,147.5]^2), V east of it: Trajp slides East; both candidates lie on
+  // x = 200 and enter after 52.5 mm. The farther from R is (200,130) in the first pair and
+  // (200,98) in the second.
+  const std::vector<std::pair<Vector2d, Vector2d>> pairs{{{200, 130}, {200, 120}}, {{200, 98}, {200, 101}}};
+  for (const auto& [farther, nearer] : pairs) {
+    for (const bool farther_first : {true, false}) {
+      const Vector2d a = farther_first ? farther : nearer;
+      const Vector2d b = farther_first ? nearer : farther;
+      const Workspace w{{500, 500}, {{100, 100}, {110, 100}, a, b}};
+      const WorldViews views(w, WindowModel::with_side(50));
+      const Placement from{0, Corner::SW};
+      ASSERT_EQ(views.obvious(from), 1u);
+      const auto east = trajectory_from(views, from, Description::Obvious, Direction::positive);
+      ASSERT_TRUE(east);
+      EXPECT_EQ(east->to, farther_first ? 2u : 3u) << "farther " << farther.transpose();
+      EXPECT_EQ(east->slide, 52.5);
+    }
+  }
+}
+
 TEST(Trajectories, LeavingTheWorldWithoutMeetingAnObjectMeansNoTrajectory) {
   const Workspace w{{500, 500}, {{100, 100}, {110, 100}}};
   const WorldViews views(w, WindowModel::with_side(50));
@@ -173,6 +197,10 @@ TEST(Trajectories, EntryDistanceIsWhereTheObjectCrossesIntoTheOpenWindow) {
     ASSERT_TRUE(window.sees(start + (*t + 1e-7) * dir, p)) << trial;
   }
   EXPECT_GT(entered, 1000);
+  // On the leading edge at the start: not seen (the window is open) and entering at once
+  // (tests/mutation/mutants.json, N20).
+  EXPECT_EQ(entry_distance(window, {0, 0}, {1, 0}, {50, 25}), 0.0);
+  EXPECT_EQ(entry_distance(window, {0, 0}, {0, -1}, {25, 0}), 0.0);
 }
 
 TEST(Trajectories, SweepFindsTheSameGoalAsCheckingEveryObject) {

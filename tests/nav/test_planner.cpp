@@ -271,6 +271,50 @@ TEST(Planner, LandmarkTiesGoToTheShorterThenTheMoreReliable) {
   EXPECT_EQ(plan_path(g, src, dst, CostCriterion::distance)->edges, std::vector<std::uint32_t>{5});
 }
 
+TEST(Planner, TiesOfTheFirstCriterionAreSearchedInOrderOfTheSecond) {
+  // 0 reaches 1 and 2 at the same first cost; 1 (the smaller id) is cheaper through 2, by an edge
+  // that adds nothing to the first criterion. Node 2 must be settled before 1, as its key is smaller
+  // on the second criterion: a search ordered by the first criterion and the node id alone settles 1
+  // too early, through the direct edge (tests/mutation/mutants.json, N02).
+  const auto edge = [](std::uint32_t a, std::uint32_t b, CostCriterion c, double first, double second) {
+    switch (c) {
+      case CostCriterion::reliability:
+        return PlanEdge{a, b, second, first, 0};
+      case CostCriterion::landmark:
+        return PlanEdge{a, b, second, 0, first};
+      default:
+        return PlanEdge{a, b, first, second, 0};
+    }
+  };
+  for (const CostCriterion c : {CostCriterion::distance, CostCriterion::reliability, CostCriterion::landmark}) {
+    PlanGraph g(4);
+    g.add_edge(edge(0, 1, c, 1, 5));  // 0
+    g.add_edge(edge(0, 2, c, 1, 0));  // 1
+    g.add_edge(edge(2, 1, c, 0, 0));  // 2
+    g.add_edge(edge(1, 3, c, 1, 0));  // 3
+    const std::uint32_t src[] = {0}, dst[] = {3};
+    const auto p = plan_path(g, src, dst, c);
+    ASSERT_TRUE(p.has_value());
+    EXPECT_EQ(p->edges, (std::vector<std::uint32_t>{1, 2, 3})) << criterion_name(c);
+  }
+}
+
+TEST(Planner, RatioTiesGoToTheShorter) {
+  // D e^U is exactly 1 on both routes: 1 e^0 and 0.5 e^(log 2). The compromise keeps the shorter
+  // (tests/mutation/mutants.json, N10).
+  const double u = std::log(2.0);
+  ASSERT_EQ(0.5 * std::exp(u), 1.0) << "this libm's exp(log 2) is not exactly 2: the tie is not exact";
+  PlanGraph g(3);
+  g.add_edge({0, 1, 1, 0});    // 0: the safe route
+  g.add_edge({0, 2, 0.5, u});  // 1: the short route
+  g.add_edge({1, 2, 0, 0});    // 2
+  const std::uint32_t src[] = {0}, dst[] = {2};
+  const auto p = plan_path(g, src, dst, CostCriterion::ratio);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->edges, std::vector<std::uint32_t>{1});
+  EXPECT_EQ(p->ratio(), 1.0);
+}
+
 TEST(Planner, ZeroCostCyclesEnd) {
   PlanGraph g(4);
   g.add_edge({0, 1, 0, 0});

@@ -37,6 +37,13 @@ TEST(Reliability, SelectionIsCertainWithOneCandidateOrNoErrorAndFallsWithRivalsA
   EXPECT_EQ(selection_reliability(1, 2.0, 50), 1.0);
   EXPECT_EQ(selection_reliability(2, 2.0, 50), 1.0);
   EXPECT_EQ(selection_reliability(8, 0.0, 50), 1.0);
+  // With two in view the reference and the landmark are the only candidates, whatever the model's
+  // coefficients (tests/mutation/mutants.json, N12: log(2 - 2) must not reach the formula).
+  for (const double beta : {1.0, 0.0, -1.0}) {
+    const SelectionReliabilityModel model{0.5, beta, 1.0};
+    EXPECT_EQ(model(2, 0.05), 1.0) << "beta " << beta;
+    EXPECT_EQ(model(1, 0.05), 1.0) << "beta " << beta;
+  }
   for (int n = 3; n < 20; ++n) {
     EXPECT_LT(selection_reliability(n + 1, 1.0, 50), selection_reliability(n, 1.0, 50));
     EXPECT_LT(selection_reliability(n, 2.0, 50), selection_reliability(n, 1.0, 50));

@@ -566,6 +566,9 @@ TEST(CompileErrors, DelayedInitialPort) {
             "'delay: 1')");
   EXPECT_NO_THROW(compile_yaml(spec_with(/* 9 */ "      b: {from: bg, delay: 1, initial: gray}")));
   EXPECT_NO_THROW(compile_yaml(spec_with(/* 9 */ "      b: {from: bg, delay: 1, initial: 128}")));
+  // Both ends of the range are legal (tests/mutation/mutants.json, P11).
+  EXPECT_NO_THROW(compile_yaml(spec_with(/* 9 */ "      b: {from: bg, delay: 1, initial: 0}")));
+  EXPECT_NO_THROW(compile_yaml(spec_with(/* 9 */ "      b: {from: bg, delay: 1, initial: 255}")));
   // A constant must fit the port's pixels, not wrap or saturate silently.
   EXPECT_EQ(compile_error(spec_with(/* 9 */ "      b: {from: bg, delay: 1, initial: 300}")),
             "spec.yaml:9:7: the initial value of input 'b' of node 'bg' is 300, outside the gray8 range 0..255");

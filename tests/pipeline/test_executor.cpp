@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <filesystem>
@@ -27,6 +28,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "kernels/bool3x3.hpp"
@@ -793,6 +795,60 @@ TEST(Executor, NodeErrorStillDeliversEveryEarlierFrame) {
         std::runtime_error);
   }
   EXPECT_EQ(delivered, (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
+}
+
+// Two frames fail, the later one first: the error reported is the earlier frame's, the one a
+// sequential run would have hit (tests/mutation/mutants.json, P06). Frame 3 waits until frame 5 has
+// reached the node, so both are in flight; with the real executor the outcome does not depend on
+// which error is recorded first.
+TEST(Executor, TheEarliestFramesErrorWinsWhateverTheOrderOfFailures) {
+  struct FailTwice final : pl::Node {
+    explicit FailTwice(std::shared_ptr<Gate> g)
+        : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame,
+               pl::FrameOrder::any),
+          gate(std::move(g)) {}
+    void begin_frame(pl::NodeIO& io) override {
+      const int frame = io.image(0).at<std::uint8_t>(0, 0);
+      if (frame == 3) {
+        gate->arrive_and_wait();
+        // Lets frame 5's error be recorded first (in the usual interleaving; either is correct).
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        throw std::runtime_error("failure at frame 3");
+      }
+      if (frame == 5) {
+        gate->wait_for_arrival();
+        gate->open();
+        throw std::runtime_error("failure at frame 5");
+      }
+      io.image(0).copyTo(io.out_image(0));
+    }
+    std::shared_ptr<Gate> gate;
+  };
+  auto gate = std::make_shared<Gate>();
+  pl::KernelRegistry r = pl::standard_kernels();
+  r.add({"fail_twice", "", [gate](pl::NodeContext&) { return std::make_unique<FailTwice>(gate); }});
+  pl::CompiledGraph g = compile_yaml(
+      "nodes:\n"
+      "  - {name: src, kernel: source, params: {format: gray}}\n"
+      "  - {name: f, kernel: fail_twice, inputs: {in: src}}\n"
+      "outputs: f\n",
+      r);
+  std::vector<std::int64_t> delivered;
+  std::string error;
+  const auto frames = numbered_frames(8);
+  {
+    pl::Executor ex(std::move(g), {.threads = 3, .frames_in_flight = 8},
+                    [&](pl::FrameResult&& res) { delivered.push_back(res.index); });
+    try {
+      for (int i = 0; i < 8; ++i) ex.submit(i, frames[static_cast<size_t>(i)]);
+      ex.finish();
+      ADD_FAILURE() << "no error surfaced";
+    } catch (const std::runtime_error& e) {
+      error = e.what();
+    }
+  }
+  EXPECT_EQ(error, "frame 3, node 'f' (fail_twice): failure at frame 3");
+  EXPECT_EQ(delivered, (std::vector<std::int64_t>{0, 1, 2}));
 }
 
 TEST(Executor, DestroyedWithFramesInFlight) {
