@@ -238,6 +238,13 @@ class Gate {
     open_ = true;
     cv_.notify_all();
   }
+  // Fails frame `frame` once the kernel held at the gate has arrived, releasing it: the failure is
+  // on its way while the held frame is still in flight.
+  [[noreturn]] void fail_once_arrived(int frame) {
+    wait_for_arrival();
+    open();
+    throw std::runtime_error("failure at frame " + std::to_string(frame));
+  }
 
  private:
   std::mutex m_;
@@ -761,11 +768,7 @@ TEST(Executor, NodeErrorStillDeliversEveryEarlierFrame) {
         : Node({{"in", pl::PortType::gray8}}, {{"out", pl::PortType::gray8}}, kn::Footprint::frame),
           gate(std::move(g)) {}
     void begin_frame(pl::NodeIO& io) override {
-      if (io.image(0).at<std::uint8_t>(0, 0) == 5) {
-        gate->wait_for_arrival();
-        gate->open();
-        throw std::runtime_error("failure at frame 5");
-      }
+      if (io.image(0).at<std::uint8_t>(0, 0) == 5) gate->fail_once_arrived(5);
       io.image(0).copyTo(io.out_image(0));
     }
     std::shared_ptr<Gate> gate;
@@ -815,11 +818,7 @@ TEST(Executor, TheEarliestFramesErrorWinsWhateverTheOrderOfFailures) {
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
         throw std::runtime_error("failure at frame 3");
       }
-      if (frame == 5) {
-        gate->wait_for_arrival();
-        gate->open();
-        throw std::runtime_error("failure at frame 5");
-      }
+      if (frame == 5) gate->fail_once_arrived(5);
       io.image(0).copyTo(io.out_image(0));
     }
     std::shared_ptr<Gate> gate;
