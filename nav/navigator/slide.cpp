@@ -98,6 +98,11 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
       if ((q.array() > 0).all() && (q.array() < side).all()) known.push_back(p);
     }
   }
+  // The direction's landmark is known whatever the view: it may lie just beyond an edge (taken from
+  // there by the seek, or cut by the border), and the slide brings it in, but it is never the goal
+  // (the map-maker's model does not count it).
+  const Eigen::Vector2d via_now = via + (reference - hold.landmark);
+  if (!nearest(known, via_now, tracking_gate(0))) known.push_back(via_now);
   double gate = tracking_gate(0);
   double slid = 0;
   double last_step = 0;
