@@ -91,6 +91,7 @@ json route_json(const mm::Route& route) {
                  {"visible", s.visible},
                  {"verification", mm::verifiability_name(rs.check.kind)},
                  {"qoc", rs.check.qoc}};
+    if (const auto q = rs.entry.verified_quadrants()) step["quadrants"] = nav::format_quadrants(*q);
     if (s.slide) {
       step["via"] = s.via;
       step["dir"] = nav::direction_name(*s.slide);

@@ -1,5 +1,6 @@
 #include "nav/common/custom_map.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -20,11 +21,36 @@ bool MapEntry::verify_only_in_doubt() const {
   return false;
 }
 
+std::optional<QuadrantPattern> MapEntry::verified_quadrants() const {
+  for (const RecoveryRule& r : rules) {
+    if (!r.corner) return r.quadrants;
+  }
+  return std::nullopt;
+}
+
 const RecoveryRule* MapEntry::recovery_for(int qoc) const {
   for (const RecoveryRule& r : rules) {
     if (r.corner && r.qoc == qoc) return &r;
   }
   return nullptr;
+}
+
+std::string format_quadrants(const QuadrantPattern& pattern) {
+  std::string out;
+  for (const Corner q : kCorners) {
+    const Occupancy o = pattern[static_cast<std::size_t>(index(q))];
+    if (o == Occupancy::empty) continue;
+    if (!out.empty()) out += ' ';
+    if (o == Occupancy::unsure) out += '~';
+    out += corner_name(q);
+  }
+  return out.empty() ? "none" : out;
+}
+
+bool quadrants_allow(const QuadrantPattern& pattern, int qoc) {
+  const auto occupied = std::count(pattern.begin(), pattern.end(), Occupancy::occupied);
+  const auto unsure = std::count(pattern.begin(), pattern.end(), Occupancy::unsure);
+  return occupied <= qoc && qoc <= occupied + unsure;
 }
 
 std::string format_entry(const MapEntry& entry) {
@@ -36,7 +62,13 @@ std::string format_entry(const MapEntry& entry) {
     out += std::to_string(std::lround(*entry.slide_limit));
   }
   for (const RecoveryRule& r : entry.rules) {
-    out += ", (" + std::to_string(r.qoc) + ", ";
+    out += ", (";
+    out += std::to_string(r.qoc);
+    if (r.quadrants) {
+      out += ' ';
+      out += format_quadrants(*r.quadrants);
+    }
+    out += ", ";
     out += r.corner ? std::string(corner_name(*r.corner)) + ", " + std::string(description_name(r.seek))
                     : (r.only_in_doubt ? "?" : "-");
     out += ")";
@@ -57,7 +89,8 @@ namespace {
 // A recursive-descent reader over the grammar
 //   map   := '(' [entry {',' entry}] ')'
 //   entry := '(' DESC [',' TRAJ [':' MM]] {',' rule} ',' (CORNER | '-') ')'
-//   rule  := '(' INT ',' ((CORNER ',' DESC) | '-' | '?') ')'
+//   rule  := '(' INT [QUADRANTS] ',' ((CORNER ',' DESC) | '-' | '?') ')'
+//   QUADRANTS := 'none' | ['~'] CORNER {['~'] CORNER}
 class Reader {
  public:
   explicit Reader(std::string_view text) : text_(text) {}
@@ -115,8 +148,17 @@ class Reader {
     const auto [end, ec] = std::from_chars(k.data(), k.data() + k.size(), value);
     if (ec != std::errc{} || end != k.data() + k.size() || value < 0 || value > 4) fail("a QOC 0..4", k);
     r.qoc = value;
+    if (!peek(',')) {
+      const std::size_t at = pos_;
+      r.quadrants = quadrants();
+      if (!quadrants_allow(*r.quadrants, value)) {
+        pos_ = at;
+        fail("quadrants that a QOC of " + std::to_string(value) + " can count", format_quadrants(*r.quadrants));
+      }
+    }
     expect(',');
     const std::string w = word();
+    if (r.quadrants && w != "-" && w != "?") fail("- or ? after the quadrants of the verified QOC", w);
     if (w == "?") {
       r.only_in_doubt = true;
     } else if (w != "-") {
@@ -131,6 +173,22 @@ class Reader {
     }
     expect(')');
     return r;
+  }
+
+  QuadrantPattern quadrants() {
+    QuadrantPattern pattern{};
+    pattern.fill(Occupancy::empty);
+    const std::string first = word();
+    if (first == "none") return pattern;
+    for (std::string w = first;; w = word()) {
+      const bool unsure = !w.empty() && w.front() == '~';
+      const auto q = parse_corner(unsure ? std::string_view(w).substr(1) : std::string_view(w));
+      if (!q) fail("a quadrant (SE, SW, NE, NW, ~ before an unsure one) or none", w);
+      Occupancy& o = pattern[static_cast<std::size_t>(index(*q))];
+      if (o != Occupancy::empty) fail("each quadrant once", w);
+      o = unsure ? Occupancy::unsure : Occupancy::occupied;
+      if (peek(',')) return pattern;
+    }
   }
 
   double slide_limit(const std::string& text) const {

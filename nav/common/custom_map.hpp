@@ -4,7 +4,8 @@
 // the reference->landmark direction (Trajp) or back (Trajn) until a new object enters and take that
 // one; verify it by its QOC and apply the recovery rules E; adjust it to corner M ('-' at the goal).
 // Text form, as in the paper: ((*, SW), (Isol, SE), (Isol, Trajp, (2, NW, Isol), (1, -), -)), with
-// two extensions: a slide's bound ("Trajp:120", mm) and a QOC to measure only in doubt ("(1, ?)").
+// three extensions: a slide's bound ("Trajp:120", mm), a QOC to measure only in doubt ("(1, ?)"),
+// and which quadrants the verified QOC counts ("(2 NE SW ~NW, -)", see QuadrantPattern).
 
 #include <optional>
 #include <stdexcept>
@@ -35,6 +36,24 @@ struct RecoveryRule {
   std::optional<Corner> corner;  ///< none: "verified / arrived"
   Description seek = Description::Isol;
   bool only_in_doubt = false;  ///< (k, ?): with no corner
+  /// With no corner: the quadrants QOC k counts, when the map gives them.
+  std::optional<QuadrantPattern> quadrants;
+
+  /// (k, -), or (k, ?) when `only_in_doubt`.
+  static RecoveryRule verified(int qoc, bool only_in_doubt = false) {
+    RecoveryRule r;
+    r.qoc = qoc;
+    r.only_in_doubt = only_in_doubt;
+    return r;
+  }
+  /// (k, corner, D').
+  static RecoveryRule leading_back(int qoc, Corner corner, Description seek) {
+    RecoveryRule r;
+    r.qoc = qoc;
+    r.corner = corner;
+    r.seek = seek;
+    return r;
+  }
   friend bool operator==(const RecoveryRule&, const RecoveryRule&) = default;
 };
 
@@ -50,6 +69,8 @@ struct MapEntry {
 
   /// The QOC that verifies this entry's landmark, when the map gives one.
   std::optional<int> verified_qoc() const;
+  /// The quadrants that QOC counts, when the map gives them.
+  std::optional<QuadrantPattern> verified_quadrants() const;
   /// The map gives the QOC only for when the navigator is in doubt: (k, ?).
   bool verify_only_in_doubt() const;
   /// The rule for a landmark reached with QOC k that is not the verified one.
@@ -66,6 +87,11 @@ class CustomMapError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// "NE SW ~NW" (the occupied quadrants, ~ before an unsure one), "none" when all are empty.
+std::string format_quadrants(const QuadrantPattern& pattern);
+/// Whether a QOC of k can count these quadrants: at least the occupied ones, at most those and the
+/// unsure ones.
+bool quadrants_allow(const QuadrantPattern& pattern, int qoc);
 std::string format_entry(const MapEntry& entry);
 /// The whole map on one line, entries in order.
 std::string format_custom_map(const CustomMap& map);

@@ -33,6 +33,15 @@ constexpr std::optional<Corner> parse_corner(std::string_view text) {
   return std::nullopt;
 }
 
+/// Which of a landmark's quadrants hold an object, as the map-maker sees them: an extension of the
+/// paper's QOC, which only counts them. Two marbles with the same count rarely occupy the same
+/// quadrants, so a mistake the count cannot show, the pattern often does. A quadrant whose only
+/// objects lie near its window's border (within the map-maker's tolerance) is `unsure`: the survey
+/// may have put them on the wrong side. Text: the occupied quadrants, `~` before an unsure one,
+/// `none` when all are empty: "2 NE SW ~NW".
+enum class Occupancy : std::uint8_t { empty, occupied, unsure };
+using QuadrantPattern = std::array<Occupancy, 4>;  ///< indexed by the quadrant's Corner (index())
+
 /// The diagonally opposite corner: holding L at SW looks into L's NE quadrant.
 constexpr Corner opposite(Corner c) {
   switch (c) {

@@ -99,7 +99,11 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     // (Measured at every unverifiable step it finds more mistakes than it can undo: on five surveys of
     // two worlds at 1.5 mm the goal rate fell from 91.0% to 88.6%; at the goal alone it rose to 91.8%.)
     if (last && rs.check.kind == Verifiability::unverifiable) {
-      rs.entry.rules.push_back({rs.check.qoc, std::nullopt, Description::Isol, true});
+      rs.entry.rules.push_back(RecoveryRule::verified(rs.check.qoc, true));
+    }
+    // The verified QOC names its quadrants: a mistake with the same count rarely has the same ones.
+    for (RecoveryRule& r : rs.entry.rules) {
+      if (!r.corner) r.quadrants = views_.quadrant_pattern(s.landmark, options_.border_tolerance);
     }
     // The navigator stops a slide its landmark has not ended by here: a window beyond the slide,
     // room for what errors move and for the next newcomers when the first proves wrong.

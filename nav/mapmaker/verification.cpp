@@ -93,7 +93,7 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
   const QocRanges ranges(views, tolerance);
   const QocRange mine = ranges(landmark);
   if (check.confusable.empty()) {  // trivial: the QOC, for when the navigator's view makes it guess
-    if (mine.low == mine.high) check.rules.push_back({check.qoc, std::nullopt, Description::Isol, true});
+    if (mine.low == mine.high) check.rules.push_back(RecoveryRule::verified(check.qoc, true));
     return check;
   }
   // Every QOC a mistaken object may show, with the objects that may show it.
@@ -134,9 +134,9 @@ StepCheck check_step(const WorldViews& views, std::uint32_t landmark, std::span<
       });
   check.kind = correctable ? Verifiability::correctable : Verifiability::not_correctable;
   if (correctable) {
-    for (const auto& [q, c] : rules) check.rules.push_back({q, c, Description::Isol});
+    for (const auto& [q, c] : rules) check.rules.push_back(RecoveryRule::leading_back(q, c, Description::Isol));
   }
-  check.rules.push_back({check.qoc, std::nullopt, Description::Isol});
+  check.rules.push_back(RecoveryRule::verified(check.qoc));
   return check;
 }
 

@@ -74,6 +74,20 @@ QocRange WorldViews::qoc_range(std::uint32_t object, double tolerance) const {
     return {q, q};
   }
   QocRange r;
+  for (const Occupancy o : quadrant_pattern(object, tolerance)) {
+    r.low += o == Occupancy::occupied;
+    r.high += o != Occupancy::empty;
+  }
+  return r;
+}
+
+QuadrantPattern WorldViews::quadrant_pattern(std::uint32_t object, double tolerance) const {
+  QuadrantPattern pattern{};
+  if (tolerance <= 0) {
+    const std::array<bool, 4> q = quadrants(object);
+    for (std::size_t i = 0; i < q.size(); ++i) pattern[i] = q[i] ? Occupancy::occupied : Occupancy::empty;
+    return pattern;
+  }
   const Eigen::Vector2d t(tolerance, tolerance);
   for (const Corner held : kCorners) {
     const Eigen::Vector2d lo = origin({object, held});
@@ -87,10 +101,11 @@ QocRange WorldViews::qoc_range(std::uint32_t object, double tolerance) const {
       surely = surely || depth > tolerance;
       maybe = maybe || depth > -tolerance;
     });
-    r.low += surely;
-    r.high += maybe;
+    // Held at `held`, the window looks into the opposite quadrant.
+    pattern[static_cast<std::size_t>(index(opposite(held)))] =
+        surely ? Occupancy::occupied : (maybe ? Occupancy::unsure : Occupancy::empty);
   }
-  return r;
+  return pattern;
 }
 
 GatheredView gather(const WorldViews& views, const Placement& p) {

@@ -68,6 +68,9 @@ class WorldViews {
   /// window border: low counts the quadrants with an object deeper than that inside, high those with
   /// an object anywhere within that of the window. low <= qoc <= high; both are qoc at tolerance 0.
   QocRange qoc_range(std::uint32_t object, double tolerance) const;
+  /// Which quadrants hold an object, each `unsure` when its objects all lie within `tolerance` of
+  /// the window's border (inside or out): the pattern qoc_range counts.
+  QuadrantPattern quadrant_pattern(std::uint32_t object, double tolerance) const;
 
  private:
   const Workspace* workspace_;

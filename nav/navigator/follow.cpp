@@ -45,8 +45,8 @@ struct SlideTry {
 };
 SlideTry slide_try(int candidate, double offset) {
   if (offset <= 0 || candidate == 0) return {candidate, 0.0};
-  if (candidate <= 2) return {0, candidate == 1 ? offset : -offset};
-  return {candidate - 2, 0.0};
+  if (candidate <= 4) return {0, (candidate % 2 == 1 ? offset : -offset) * ((candidate + 1) / 2)};
+  return {candidate - 4, 0.0};
 }
 
 std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, int candidate, detail::Hold& held,

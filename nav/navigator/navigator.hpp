@@ -64,7 +64,7 @@ struct NavigatorConfig {
   /// Candidates an entry may take after the description's choice, and returns to an earlier landmark
   /// a journey may make, when what follows a choice leads nowhere (follow.cpp). A slide's
   /// candidates are the slide beside the track on either side (slide_offset), then the next newcomer.
-  int max_alternatives = 3;
+  int max_alternatives = 5;
   int max_backtracks = 6;
   /// What the navigator expects of its arm's unintended turns (sd per move: turn_sigma0 +
   /// turn_sigma_per_mm * length, rad) and of its own positions of whole marbles (sd, mm): it weighs
@@ -85,6 +85,8 @@ struct NavigatorConfig {
   /// (the survey's errors turn the direction and move the goal: it may pass just beside the window).
   /// 0: no such retry, the next newcomer is the next candidate.
   double slide_offset = 0;
+  /// Check the quadrants the map names for a verified QOC (QuadrantPattern), not only their count.
+  bool quadrants = true;
 };
 
 /// How the journey ended, as the navigator knows it (the harness adds ground truth to make the six

@@ -5,6 +5,7 @@
 // by d, so an object seen at p is expected at p - d after the move.
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -136,6 +137,15 @@ struct Qoc {
   int measured = 0;
   int low = 0;
   int high = 0;
+  /// Per quadrant (indexed by its Corner): an object clearly inside its window (deeper than the
+  /// view margin), and anything in it or within the margin outside.
+  std::array<bool, 4> clearly{};
+  std::array<bool, 4> maybe{};
+  /// What was seen, in the custom map's notation (unsure: only near a border).
+  QuadrantPattern pattern() const;
+  /// Whether the map's pattern could be this landmark's: no quadrant the map says is occupied is
+  /// empty to the last margin, and none it says is empty holds an object clearly inside.
+  bool agrees_with(const QuadrantPattern& map) const;
 };
 std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc);
 

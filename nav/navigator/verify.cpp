@@ -39,13 +39,32 @@ std::optional<Failure> measure_qoc(Pilot& pilot, Hold& hold, Qoc& qoc) {
     qoc.measured += seen;
     qoc.low += clearly;
     qoc.high += seen || !view.just_outside.empty();
+    const auto q = static_cast<std::size_t>(index(opposite(hold.corner)));
+    qoc.clearly[q] = clearly;
+    qoc.maybe[q] = seen || !view.just_outside.empty();
   }
   return std::nullopt;
+}
+
+QuadrantPattern Qoc::pattern() const {
+  QuadrantPattern p{};
+  for (std::size_t q = 0; q < p.size(); ++q)
+    p[q] = clearly[q] ? Occupancy::occupied : (maybe[q] ? Occupancy::unsure : Occupancy::empty);
+  return p;
+}
+
+bool Qoc::agrees_with(const QuadrantPattern& map) const {
+  for (std::size_t q = 0; q < map.size(); ++q) {
+    if (map[q] == Occupancy::occupied && !maybe[q]) return false;
+    if (map[q] == Occupancy::empty && clearly[q]) return false;
+  }
+  return true;
 }
 
 std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, bool doubtful, Eigen::Vector2d& landmark,
                               EntryRecord& record) {
   const std::optional<int> expected = entry.verified_qoc();
+  const std::optional<QuadrantPattern> quadrants = pilot.config().quadrants ? entry.verified_quadrants() : std::nullopt;
   if (!expected) return std::nullopt;  // the map gives no QOC: nothing could be mistaken, or nothing told apart
   // A step nothing else could be taken for carries its landmark's QOC for when the view was not the
   // map-maker's and the navigator had to guess.
@@ -63,13 +82,20 @@ std::optional<Failure> verify(Pilot& pilot, const MapEntry& entry, bool doubtful
     // it could have computed for this landmark verifies it, unless a rule names the QOC seen.
     const bool explained = measured.low <= *expected && *expected <= measured.high;
     const RecoveryRule* rule = pilot.config().recovery ? entry.recovery_for(qoc) : nullptr;
-    if (qoc == *expected || (explained && rule == nullptr)) {
+    // The quadrants, when the map names them, must agree too: the same count in other quadrants is
+    // another marble (one the count alone would pass).
+    const bool agrees = !quadrants || measured.agrees_with(*quadrants);
+    if (agrees && (qoc == *expected || (explained && rule == nullptr))) {
       record.verified = true;
       return std::nullopt;
     }
-    if (rule == nullptr) {
+    if (rule == nullptr || (qoc == *expected && !agrees)) {
+      const std::string seen =
+          agrees ? fmt::format("QOC {} where the map expects {}", qoc, *expected)
+                 : fmt::format("quadrants {} where the map expects {} {}", format_quadrants(measured.pattern()),
+                               *expected, format_quadrants(*quadrants));
       return Failure{Ending::unrecoverable,
-                     fmt::format("the landmark reached has QOC {} where the map expects {}, and {}", qoc, *expected,
+                     fmt::format("the landmark reached has {}, and {}", seen,
                                  pilot.config().recovery ? "no recovery rule applies" : "recovery is off"),
                      true};
     }

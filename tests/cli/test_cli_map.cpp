@@ -133,7 +133,7 @@ TEST_F(MapCli, EveryCostCriterionAndTheLandmarkBasedPath) {
     EXPECT_EQ(j["cost"], cost);
     costs[cost] = j["costs"];
     if (cost == "landmark") {
-      EXPECT_EQ(j["custom_map_text"], "((*, SE), (Obvious, (2, ?), SW), (Obvious, (2, ?), -))");
+      EXPECT_EQ(j["custom_map_text"], "((*, SE), (Obvious, (2 SE NE, ?), SW), (Obvious, (2 SE SW, ?), -))");
       EXPECT_NEAR(j["path"][1]["landmark_distance"].get<double>(), std::hypot(17, 15), 1e-9);
     }
   }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "nav/common/custom_map.hpp"
@@ -51,12 +52,19 @@ TEST(CustomMap, RandomMapsRoundTrip) {
       }
       const int rules = static_cast<int>(rng() % 4);
       for (int r = 0; r < rules; ++r) {
-        RecoveryRule rule{static_cast<int>(rng() % 5), std::nullopt, Description::Isol};
+        RecoveryRule rule = RecoveryRule::verified(static_cast<int>(rng() % 5));
         if (rng() % 4) {
           rule.corner = kCorners[rng() % 4];
           rule.seek = static_cast<Description>(rng() % 5);
         } else {
           rule.only_in_doubt = rng() % 2 == 0;
+          if (rng() % 2) {
+            QuadrantPattern q{};
+            for (Occupancy& o : q) o = static_cast<Occupancy>(rng() % 3);
+            const auto occupied = std::count(q.begin(), q.end(), Occupancy::occupied);
+            rule.qoc = static_cast<int>(occupied + rng() % (std::count(q.begin(), q.end(), Occupancy::unsure) + 1));
+            rule.quadrants = q;
+          }
         }
         e.rules.push_back(rule);
       }
@@ -82,6 +90,21 @@ TEST(CustomMap, ReadsASlidesBoundAndAQocToMeasureOnlyInDoubt) {
   EXPECT_THROW(parse_custom_map("((Obvious, Trajp:, SE))"), CustomMapError);
 }
 
+TEST(CustomMap, ReadsTheQuadrantsOfAVerifiedQoc) {
+  const CustomMap m = parse_custom_map("((*, SW), (Isol, (2 NE ~SE SW, ?), -), (Near, (0 none, -), SW))");
+  const std::optional<QuadrantPattern> q = m.entries[1].verified_quadrants();
+  ASSERT_TRUE(q.has_value());
+  EXPECT_EQ((*q)[index(Corner::NE)], Occupancy::occupied);
+  EXPECT_EQ((*q)[index(Corner::SW)], Occupancy::occupied);
+  EXPECT_EQ((*q)[index(Corner::SE)], Occupancy::unsure);
+  EXPECT_EQ((*q)[index(Corner::NW)], Occupancy::empty);
+  EXPECT_EQ(m.entries[1].verified_qoc(), 2);
+  EXPECT_EQ(m.entries[2].verified_quadrants(), (QuadrantPattern{}));
+  // Written in the corners' order (SE, SW, NE, NW).
+  EXPECT_EQ(format_custom_map(m), "((*, SW), (Isol, (2 ~SE SW NE, ?), -), (Near, (0 none, -), SW))");
+  EXPECT_FALSE(parse_custom_map("((Isol, (2, -), SW))").entries[0].verified_quadrants().has_value());
+}
+
 TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
   const auto message = [](const std::string& text) {
     try {
@@ -100,6 +123,15 @@ TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
   EXPECT_EQ(message("((Isol, (7, SW, Isol), SW))"), "custom map: at character 11: expected a QOC 0..4, found '7'");
   EXPECT_EQ(message("((Isol, SW)"), "custom map: at character 12: expected ')', found 'the end'");
   EXPECT_EQ(message("((Isol, SW)) extra"), "custom map: at character 14: expected end of the map, found 'e'");
+  EXPECT_EQ(message("((Isol, (3 NE SW, -), SW))"),
+            "custom map: at character 12: expected quadrants that a QOC of 3 can count, found 'SW NE'");
+  EXPECT_EQ(message("((Isol, (1 NE NE, -), SW))"),
+            "custom map: at character 17: expected each quadrant once, found 'NE'");
+  EXPECT_EQ(message("((Isol, (1 N, -), SW))"),
+            "custom map: at character 13: expected a quadrant (SE, SW, NE, NW, ~ before an unsure one) or none, "
+            "found 'N'");
+  EXPECT_EQ(message("((Isol, (1 NE, SW, Isol), SW))"),
+            "custom map: at character 18: expected - or ? after the quadrants of the verified QOC, found 'SW'");
   EXPECT_EQ(message("((Isol, (2, -), Trajp, SW))"),
             "custom map: at character 22: expected a recovery rule or a corner, found 'Trajp'");
 }

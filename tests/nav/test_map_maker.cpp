@@ -206,10 +206,10 @@ TEST(MapMaker, LandmarkBasedAndContextBasedShortestPathsDiffer) {
   const MapMaker maker(w, MapMakerOptions{});
   const Route by_d = maker.plan(0, 2, CostCriterion::distance);
   const Route by_l = maker.plan(0, 2, CostCriterion::landmark);
-  EXPECT_EQ(format_custom_map(by_d.custom_map), "((*, SW), (Obvious, (2, ?), SE), (Obvious, (2, ?), -))");
+  EXPECT_EQ(format_custom_map(by_d.custom_map), "((*, SW), (Obvious, (2 SW NW, ?), SE), (Obvious, (2 SE SW, ?), -))");
   EXPECT_NEAR(by_d.distance, std::hypot(1, 18), 1e-9);
   EXPECT_NEAR(by_d.landmark_distance, std::hypot(44, 18) + std::hypot(27, 42), 1e-9);
-  EXPECT_EQ(format_custom_map(by_l.custom_map), "((*, SE), (Obvious, (2, ?), SW), (Obvious, (2, ?), -))");
+  EXPECT_EQ(format_custom_map(by_l.custom_map), "((*, SE), (Obvious, (2 SE NE, ?), SW), (Obvious, (2 SE SW, ?), -))");
   EXPECT_NEAR(by_l.distance, std::hypot(28, 15), 1e-9);
   EXPECT_NEAR(by_l.landmark_distance, std::hypot(17, 15) + std::hypot(34, 45), 1e-9);
   ASSERT_EQ(by_l.steps.size(), 2U);

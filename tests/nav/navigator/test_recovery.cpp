@@ -259,3 +259,42 @@ TEST(SlideDirection, TheDirectionsLandmarkEnteringIsNotTheGoal) {
 
 }  // namespace
 }  // namespace neopipe::nav::navigator
+
+namespace neopipe::nav::navigator {
+namespace {
+
+// The first marble a slide meets has the goal's QOC count but in another quadrant: the count passes
+// it, the quadrants the map names do not, and the navigator goes on to the next newcomer.
+TEST(QuadrantPattern, AMistakeWithTheGoalsQocButOtherQuadrantsIsFoundOut) {
+  sim::World world;
+  world.size = {400, 300};
+  // S held at SW sees V due East; the band swept East spans y 97.5..147.5. X enters first, its one
+  // neighbour Y to its South-East; G enters next, its one neighbour Z to its North-East. Y and Z lie
+  // outside the band and never enter.
+  constexpr std::size_t kS = 0, kX = 2, kG = 3;
+  world.objects = {{100, 100}, {130, 100}, {200, 120}, {280, 130}, {215, 90}, {295, 150}};
+  const mapmaker::Workspace workspace = test_rig::workspace_of(world);  // the views point into it
+  const mapmaker::WorldViews views(workspace, WindowModel::with_side(50));
+  ASSERT_EQ(views.qoc(kX), 1);
+  ASSERT_EQ(views.qoc(kG), 1);
+  ASSERT_EQ(format_quadrants(views.quadrant_pattern(kX, 0)), "SE");
+  ASSERT_EQ(format_quadrants(views.quadrant_pattern(kG, 0)), "NE");
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:250, (1 NE, -), -))");
+  for (const bool quadrants : {true, false}) {
+    Rig rig(world);
+    rig.config().quadrants = quadrants;
+    const test_rig::Journey j = test_rig::travel(rig, map, kS, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    if (!quadrants) {
+      EXPECT_EQ(j.final_object, kX);  // the count alone takes the mistake
+      continue;
+    }
+    EXPECT_EQ(j.final_object, kG);
+    EXPECT_EQ(j.report.backtracks, 1);
+    EXPECT_EQ(j.report.entries.back().candidate, 1);
+    EXPECT_TRUE(j.report.entries.back().verified);
+  }
+}
+
+}  // namespace
+}  // namespace neopipe::nav::navigator
