@@ -26,7 +26,7 @@ constexpr double kFittedBeta = 1.075169;
 constexpr double kFittedGamma = 1.011016;
 
 // scripts/fit_recovery_credit.py on `neopipe nav --trials` runs (docs/navigation.md says which).
-constexpr double kRecoveredShare = 0.60;
+constexpr double kRecoveredShare = 0.71;
 
 struct OffsetBound {
   double slide;  ///< where along the slide
