@@ -7,8 +7,7 @@ get_property(neopipe_public_headers GLOBAL PROPERTY NEOPIPE_PUBLIC_HEADERS)
 
 install(TARGETS ${neopipe_public_targets} EXPORT neopipeTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/neopipe)
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 foreach(header IN LISTS neopipe_public_headers)
   get_filename_component(dir ${header} DIRECTORY)
   install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/neopipe/${dir})
@@ -31,5 +30,6 @@ install(FILES ${PROJECT_BINARY_DIR}/neopipeConfig.cmake ${PROJECT_BINARY_DIR}/ne
 # pkg-config: the static libraries in link order (users before what they use), and the packages
 # they link, whose own .pc files bring their flags.
 file(RELATIVE_PATH NEOPIPE_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+string(REGEX REPLACE "/$" "" NEOPIPE_PC_TO_PREFIX "${NEOPIPE_PC_TO_PREFIX}")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/neopipe.pc.in ${PROJECT_BINARY_DIR}/neopipe.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/neopipe.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
