@@ -43,6 +43,14 @@ LD_DEBUG=files "$prefix/bin/neopipe" sim render --world "$work/world.yaml" --rea
 grep -q "file=$prefix/$libdir/neopipe/libneopipe_media.so" "$work/ld.log" ||
   fail "the installed program did not load the installed plug-in: $(grep -o 'file=[^ ]*media[^ ]*' "$work/ld.log" || true)"
 
+# A program elsewhere (neither beside the plug-in nor in bin/ of the prefix) loads the one
+# NEOPIPE_MEDIA_PLUGIN names, before the build tree's.
+mkdir "$work/elsewhere" && cp "$prefix/bin/neopipe" "$work/elsewhere/"
+NEOPIPE_MEDIA_PLUGIN="$prefix/$libdir/neopipe/libneopipe_media.so" LD_DEBUG=files "$work/elsewhere/neopipe" sim render \
+  --world "$work/world.yaml" --realism ideal --out "$work/elsewhere.png" > /dev/null 2> "$work/ld.log"
+grep -q "file=$prefix/$libdir/neopipe/libneopipe_media.so" "$work/ld.log" ||
+  fail "NEOPIPE_MEDIA_PLUGIN was not the plug-in loaded: $(grep -o 'file=[^ ]*media[^ ]*' "$work/ld.log" || true)"
+
 # The consumer, through find_package.
 cmake -S "$consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_COMPILER="$cxx" \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON ${launcher:+-DCMAKE_CXX_COMPILER_LAUNCHER="$launcher"} \
