@@ -14,6 +14,7 @@
 #include "apps/nav_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
+#include "neopipe_version.hpp"
 
 namespace {
 using namespace neopipe::apps;
@@ -44,7 +45,7 @@ std::string command_path(const CLI::App& app) {
 int run_main(int argc, char** argv) {
   CLI::App app("neopipe: a PIPE-style real-time image pipeline engine", "neopipe");
   app.require_subcommand(1);
-  app.set_version_flag("--version", "neopipe 0.1.0");
+  app.set_version_flag("--version", std::string("neopipe ") + neopipe::version);
   RunArgs run_args;
   BenchArgs bench_args;
   CLI::App* run = add_run_command(app, run_args);

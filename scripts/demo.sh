@@ -3,8 +3,12 @@
 # (24 marbles rolling over an unevenly lit table, 640x480, 120 frames).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-./scripts/setup.sh
-./scripts/build.sh
+./scripts/setup.sh --demo
+# Only what the demo runs: the `neopipe` program, its media plug-in (built with the pipeline) and the
+# demo video (the demo_video target runs make_demo_video). The tests and benchmarks are left for
+# scripts/test.sh, which turns the tests back on in the same tree (so their packages, not installed
+# by `setup.sh --demo`, are not looked for here).
+./scripts/build.sh -DNEOPIPE_BUILD_TESTING=OFF --target neopipe --target demo_video
 out=build/demo
 ./build/apps/neopipe run "$out/marbles.avi" --out "$out/marbles_blobs.csv" --annotate "$out/marbles_annotated.mp4"
 echo

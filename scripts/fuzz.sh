@@ -30,7 +30,7 @@ fi
 # Debug keeps assertions on; -O1 is what libFuzzer's documentation recommends: fast, still debuggable.
 mkdir -p "$build"
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DNEOPIPE_FUZZ=ON -DNEOPIPE_BUILD_TESTS=OFF -DNEOPIPE_BUILD_BENCHMARKS=OFF "${launcher[@]}" >"$build/configure.log" ||
+  -DNEOPIPE_FUZZ=ON -DNEOPIPE_BUILD_TESTING=OFF -DNEOPIPE_BUILD_BENCHMARKS=OFF "${launcher[@]}" >"$build/configure.log" ||
   { cat "$build/configure.log" >&2; exit 1; }
 cmake --build "$build" -j "${JOBS:-$(nproc)}" --target "${targets[@]/#/fuzz_}"
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs the Debian packages neopipe needs to build, test and run. Safe to run again: it installs
-# only what is missing. Needs root, or sudo.
+# Installs the Debian packages neopipe needs to build, test and run (`--demo`: only to build and run).
+# Safe to run again: it installs only what is missing. Needs root, or sudo.
 set -euo pipefail
 
+# What building and running neopipe needs (scripts/demo.sh installs only these: `setup.sh --demo`) ...
 packages=(
   build-essential cmake pkg-config
   libopencv-dev          # codecs, video I/O, reference implementations
@@ -13,15 +14,20 @@ packages=(
   libcli11-dev           # the command line
   libfmt-dev
   nlohmann-json3-dev     # JSON output
-  libgtest-dev libgmock-dev
-  libbenchmark-dev       # kernel micro-benchmarks
   libavformat-dev libavcodec-dev libavutil-dev libswscale-dev  # FFmpeg's libraries: neopipe's video reader
-  ffmpeg                 # OpenCV's video back end; the tests make sample videos with it
-  opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
-  dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source
   ccache                 # rebuilds (and the sanitizer trees of scripts/sanitize.sh) recompile only what changed
-  clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes for clang (scripts/fuzz.sh)
 )
+# ... and what testing, benchmarking and fuzzing it needs besides.
+if [ "${1:-}" != "--demo" ]; then
+  packages+=(
+    libgtest-dev libgmock-dev
+    libbenchmark-dev       # kernel micro-benchmarks
+    ffmpeg                 # the tests make sample videos with it
+    opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
+    dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source
+    clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes for clang (scripts/fuzz.sh)
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

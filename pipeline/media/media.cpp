@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -18,13 +19,23 @@ constexpr const char* kPluginFile = "libneopipe_media.so";
 
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
-  // Beside the running program first, so a copied build directory uses its own plug-in; then where
-  // the build put it, for programs in other directories (the tests).
+  const auto add = [&paths](const fs::path& path) {
+    const std::string p = path.lexically_normal().string();
+    if (std::find(paths.begin(), paths.end(), p) == paths.end()) paths.push_back(p);
+  };
+  // A path the user names wins: programs that link the installed libraries live anywhere.
+  if (const char* named = std::getenv("NEOPIPE_MEDIA_PLUGIN"); named != nullptr && *named != '\0') add(named);
+  // Beside the running program, so a copied build directory uses its own plug-in; then where
+  // `cmake --install` puts it relative to the program (bin/ -> lib/neopipe/), so an installed tree
+  // works wherever its prefix is; then where the build put it, for programs in other directories
+  // (the tests).
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) paths.push_back((exe.parent_path() / kPluginFile).string());
-  const std::string built = NEOPIPE_MEDIA_PLUGIN_PATH;
-  if (std::find(paths.begin(), paths.end(), built) == paths.end()) paths.push_back(built);
+  if (!ec) {
+    add(exe.parent_path() / kPluginFile);
+    add(exe.parent_path() / NEOPIPE_MEDIA_PLUGIN_RELATIVE_DIR / kPluginFile);
+  }
+  add(NEOPIPE_MEDIA_PLUGIN_PATH);
   return paths;
 }
 

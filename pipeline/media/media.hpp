@@ -5,7 +5,8 @@
 // poppler, ...). Linked into the program they cost every run 0.15 s of start-up and about 33 MB of
 // resident memory, also `neopipe run VIDEO`, which decodes with FFmpeg's libraries directly and
 // never needs them. So they live in a plug-in, libneopipe_media.so (opencv_media_plugin.cpp), that
-// the first call below loads: from the running program's directory, else from where the build put
+// the first call below loads: from $NEOPIPE_MEDIA_PLUGIN if set, else from the running program's
+// directory, else from ../lib/neopipe/ beside it (an installed tree), else from where the build put
 // it. It stays loaded until the process ends.
 //
 // Every function throws MediaError (naming `path`) if the plug-in cannot be loaded; otherwise

@@ -1147,6 +1147,13 @@ TEST_F(Cli, HelpTextsExitZeroAndMentionTheOptions) {
   }
 }
 
+// The version has one source, project(neopipe VERSION ...) in CMakeLists.txt, which passes it here too.
+TEST_F(Cli, VersionIsThePackageVersion) {
+  const RunResult r = run_neopipe({"--version"});
+  ASSERT_TRUE(succeeded(r));
+  EXPECT_EQ(r.out, std::string("neopipe ") + NEOPIPE_EXPECTED_VERSION + "\n");
+}
+
 TEST_F(Cli, ListKernelsNamesTheKernelsTheExamplesUse) {
   const RunResult r = run_neopipe({"run", "--list-kernels"});
   ASSERT_TRUE(succeeded(r));
