@@ -21,6 +21,9 @@ packages=(
   dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source
   ccache                 # rebuilds (and the sanitizer trees of scripts/sanitize.sh) recompile only what changed
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes for clang (scripts/fuzz.sh)
+  pybind11-dev python3-dev python3-numpy  # the Python module (python/)
+  python3-pytest python3-opencv           # its tests (cv2 is the reference they compare with)
+  python3-pandas python3-matplotlib       # optional for the module; examples/python uses them
 )
 
 missing=()

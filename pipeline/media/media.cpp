@@ -23,6 +23,13 @@ std::vector<std::string> plugin_candidates() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) paths.push_back((exe.parent_path() / kPluginFile).string());
+  // Beside the shared object this code was linked into, when that is not the program: the Python
+  // module (python/) carries its plug-in in its package directory, wherever that is installed.
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<const void*>(&plugin_candidates), &self) != 0 && self.dli_fname != nullptr) {
+    const std::string beside = (fs::path(self.dli_fname).parent_path() / kPluginFile).string();
+    if (std::find(paths.begin(), paths.end(), beside) == paths.end()) paths.push_back(beside);
+  }
   const std::string built = NEOPIPE_MEDIA_PLUGIN_PATH;
   if (std::find(paths.begin(), paths.end(), built) == paths.end()) paths.push_back(built);
   return paths;
