@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstring>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -196,7 +197,12 @@ py::tuple render(const World& world, const std::string& camera, const std::strin
       sim::Pose2 p{w.size.x() / 2, w.size.y() / 2, 0};
       if (pose) {
         if (pose->size() != 3) throw py::value_error("pose: expected (x, y, theta) (mm, mm, degrees)");
-        p = {(*pose)[0], (*pose)[1], (*pose)[2]};
+        // Degrees, as the CLI's --pose takes them; the simulator's poses are in radians.
+        p = {(*pose)[0], (*pose)[1], (*pose)[2] * std::numbers::pi / 180};
+        if (!(p.x >= 0 && p.y >= 0 && p.x <= w.size.x() && p.y <= w.size.y())) {
+          throw py::value_error(fmt::format("pose ({}, {}) is outside the {} x {} mm workspace", p.x, p.y,
+                                            w.size.x(), w.size.y()));
+        }
       }
       sim::OnboardCameraConfig c;
       c.window_mm = window;
