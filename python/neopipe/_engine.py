@@ -102,7 +102,7 @@ def _is_path(source):
     return isinstance(source, (str, bytes, os.PathLike))
 
 
-def run(source, graph=None, threshold=None, connectivity=8, threads=0):
+def run(source, graph=None, threshold=None, connectivity=8, threads=0, calib=None, height=0.0):
     """Run frames through a graph; yield each frame's blob table, in frame order.
 
     source: a video file, an image file or a directory of images (as `neopipe run` takes them;
@@ -112,9 +112,13 @@ def run(source, graph=None, threshold=None, connectivity=8, threads=0):
         threshold -> blobs (8-connected), which takes `threshold` (None or "otsu": Otsu's per
         frame; T in 0..255: value > T is foreground) and `connectivity` (4 or 8).
     threads: worker threads; 0 is one per hardware thread.
+    calib: a calibration file (neopipe calibrate): the tables get X, Y, the weighted centroid on
+        the workspace (mm), as `neopipe run --calib` adds them; `height`: the blobs' centres lie
+        that far above the calibrated plane (mm; needs the full model). A calibration made for
+        another image size raises RuntimeError at the first frame, as the CLI does.
 
     Yields numpy structured arrays of BLOB_DTYPE (frame, blob, area, cx, cy, x0, y0, w, h, wcx,
-    wcy), one per frame; the tables are `neopipe run`'s, number for number. Several frames are in
+    wcy; with calib also X, Y), one per frame; the tables are `neopipe run`'s, number for number. Several frames are in
     flight at once, as in the CLI: numpy frames are read in place (not copied) until their table
     has been yielded, so do not write into a frame before then. Files are decoded on a thread of
     their own, a video gray from its luma plane as the CLI reads it.
@@ -135,8 +139,11 @@ def run(source, graph=None, threshold=None, connectivity=8, threads=0):
     core_graph = graph._core if graph is not None else None
     if not isinstance(threads, int) or threads < 0:
         raise ValueError(f"threads {threads!r}: must be 0 (one per hardware thread) or more")
+    calib = os.fsdecode(calib) if calib is not None else ""
+    height = float(height)
     if _is_path(source):
-        return _core.stream_files(core_graph, threshold, connectivity, threads, [os.fsdecode(source)])
+        return _core.stream_files(core_graph, threshold, connectivity, threads, calib, height, [os.fsdecode(source)])
     if isinstance(source, (list, tuple)) and source and all(_is_path(s) for s in source):
-        return _core.stream_files(core_graph, threshold, connectivity, threads, [os.fsdecode(s) for s in source])
-    return _core.stream_frames(core_graph, threshold, connectivity, threads, source)
+        return _core.stream_files(core_graph, threshold, connectivity, threads, calib, height,
+                                  [os.fsdecode(s) for s in source])
+    return _core.stream_frames(core_graph, threshold, connectivity, threads, calib, height, source)

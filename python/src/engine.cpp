@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "calib/plane_pose.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/kernel_registry.hpp"
 #include "pipeline/source_location.hpp"
@@ -143,31 +144,59 @@ py::dict Graph::process_outputs(const py::array& frame) {
 // ---------------------------------------------------------------------------------------------------------------
 // Stream
 
-Stream::Stream(std::optional<pl::GraphSpec> spec, pl::BlobGraphOptions builtin, int threads, py::iterator frames)
-    : spec_(std::move(spec)), builtin_(builtin), threads_(threads), frames_(std::move(frames)) {
+Stream::Stream(StreamConfig config, py::iterator frames) : config_(std::move(config)), frames_(std::move(frames)) {
   // A user's graph is checked now, before any frame is read; the built-in one is made when the first
   // frame says whether frames are gray or colour, so that neither kind is converted.
-  if (spec_) {
+  if (config_.spec) {
     std::size_t ignored = 0;
-    (void)compile_blob_graph(*spec_, ignored);
+    (void)compile_blob_graph(*config_.spec, ignored);
   }
+  load_calibration();
 }
 
-Stream::Stream(std::optional<pl::GraphSpec> spec, pl::BlobGraphOptions builtin, int threads,
-               const std::vector<std::string>& inputs)
-    : spec_(std::move(spec)), builtin_(builtin), threads_(threads) {
+Stream::Stream(StreamConfig config, const std::vector<std::string>& inputs) : config_(std::move(config)) {
   // As `neopipe run` reads them: gray (a video's luma plane) for the built-in graph, else the
-  // format the graph's source takes, so the tables are the CLI's.
+  // format the graph's source takes, so the tables are the CLI's. In the CLI's order: graph,
+  // source, calibration, so that the same mistakes give the same first error.
   pl::PortType want = pl::PortType::gray8;
-  if (spec_) {
+  if (config_.spec) {
     std::size_t ignored = 0;
-    want = compile_blob_graph(*spec_, ignored).source_type();
+    want = compile_blob_graph(*config_.spec, ignored).source_type();
   }
   file_source_ =
       io::open_frame_source(inputs, want == pl::PortType::bgr8 ? io::ColorFormat::bgr : io::ColorFormat::gray);
+  load_calibration();
   // Decoding the next frames overlaps with processing these, as in `neopipe run`.
   prefetch_ = std::make_unique<io::PrefetchingSource>(*file_source_);
   start(want);
+}
+
+void Stream::load_calibration() {
+  if (config_.calib.empty()) {
+    if (config_.height != 0) throw py::value_error("height maps blobs through a calibration: give calib");
+    return;
+  }
+  calibration_ = calib::load_calibration(config_.calib);
+  if (config_.height != 0) (void)calib::plane_pose(*calibration_);  // refuses the plane homography now, not per frame
+  world_dtype_ = world_blob_dtype();
+}
+
+py::array Stream::table(const Result& r) {
+  if (!calibration_) return blob_table(r.index, r.blobs);
+  const cv::Size made_for = calibration_->image_size;
+  if (made_for.area() > 0 && r.size != made_for) {
+    throw std::runtime_error(fmt::format("{}: made for {}x{} images, but frame {} of {} is {}x{}", config_.calib,
+                                         made_for.width, made_for.height, r.index, description(), r.size.width,
+                                         r.size.height));
+  }
+  std::vector<Eigen::Vector2d> centres;
+  centres.reserve(r.blobs.size());
+  for (const auto& b : r.blobs) centres.emplace_back(b.wcx, b.wcy);
+  std::vector<cv::Point2d> world;
+  world.reserve(centres.size());
+  for (const auto& w : calib::to_world_at_height(*calibration_, centres, config_.height))
+    world.emplace_back(w.x(), w.y());
+  return blob_table(r.index, r.blobs, world, world_dtype_);
 }
 
 Stream::~Stream() {
@@ -183,10 +212,10 @@ std::string Stream::description() const {
 
 void Stream::start(pl::PortType first_frame_type) {
   pl::GraphSpec spec;
-  if (spec_) {
-    spec = *spec_;
+  if (config_.spec) {
+    spec = *config_.spec;
   } else {
-    pl::BlobGraphOptions o = builtin_;
+    pl::BlobGraphOptions o = config_.builtin;
     o.source = first_frame_type;
     spec = pl::blob_graph(o);
   }
@@ -194,11 +223,11 @@ void Stream::start(pl::PortType first_frame_type) {
   source_type_ = graph.source_type();
   keep_one_more_ = graph.has_delays();
   pl::ExecutorOptions options;
-  options.threads = threads_;
+  options.threads = config_.threads;
   // Runs on this thread, inside submit and finish, with the GIL released: no Python here.
   executor_ = std::make_unique<pl::Executor>(std::move(graph), options, [this](pl::FrameResult&& r) {
     delivered_ = r.index;
-    results_.push_back({r.index, std::move(std::get<pl::BlobList>(r.outputs[blob_output_]))});
+    results_.push_back({r.index, r.input.size(), std::move(std::get<pl::BlobList>(r.outputs[blob_output_]))});
   });
 }
 
@@ -280,9 +309,9 @@ py::array Stream::next() {
     if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
     throw py::stop_iteration();
   }
-  Result r = std::move(results_.front());
+  const Result r = std::move(results_.front());
   results_.pop_front();
-  return blob_table(r.index, r.blobs);
+  return table(r);
 }
 
 }  // namespace neopipe::python

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "calib/calibration.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/executor.hpp"
 #include "pipeline/graph_spec.hpp"
@@ -63,13 +64,20 @@ class Graph {
   std::uintptr_t last_frame_address_ = 0;
 };
 
+struct StreamConfig {
+  std::optional<pipeline::GraphSpec> spec;  ///< none: the built-in blob graph
+  pipeline::BlobGraphOptions builtin;
+  int threads = 0;
+  std::string calib;  ///< a calibration file: add X,Y as `neopipe run --calib` does
+  double height = 0;  ///< with calib: the blobs' centres lie this far above the plane, mm
+};
+
 class Stream {
  public:
   /// Frames from a Python iterator of numpy arrays (read in place, not copied).
-  Stream(std::optional<pipeline::GraphSpec> spec, pipeline::BlobGraphOptions builtin, int threads, py::iterator frames);
+  Stream(StreamConfig config, py::iterator frames);
   /// Frames from files: one video, or images and directories of images, as `neopipe run` takes them.
-  Stream(std::optional<pipeline::GraphSpec> spec, pipeline::BlobGraphOptions builtin, int threads,
-         const std::vector<std::string>& inputs);
+  Stream(StreamConfig config, const std::vector<std::string>& inputs);
   ~Stream();
   Stream(const Stream&) = delete;
   Stream& operator=(const Stream&) = delete;
@@ -82,15 +90,18 @@ class Stream {
  private:
   struct Result {
     std::int64_t index;
+    cv::Size size;
     pipeline::BlobList blobs;
   };
+  void load_calibration();
   void start(pipeline::PortType first_frame_type);
+  py::array table(const Result& r);
   bool feed_one();
   void release_delivered();
 
-  std::optional<pipeline::GraphSpec> spec_;  ///< none: the built-in blob graph
-  pipeline::BlobGraphOptions builtin_;
-  int threads_;
+  StreamConfig config_;
+  std::optional<calib::Calibration> calibration_;
+  py::dtype world_dtype_;
   std::optional<py::iterator> frames_;
   std::unique_ptr<pipeline::io::FrameSource> file_source_;
   std::unique_ptr<pipeline::io::PrefetchingSource> prefetch_;

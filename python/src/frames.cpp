@@ -11,6 +11,18 @@ void register_blob_dtype() {
   PYBIND11_NUMPY_DTYPE(BlobRow, frame, blob, area, cx, cy, x0, y0, w, h, wcx, wcy);
 }
 
+py::dtype world_blob_dtype() {
+  // The BlobRow fields and X, Y side by side (not nested), so table["X"] and table["cx"] both work.
+  py::list fields;
+  const py::dtype row = py::dtype::of<BlobRow>();
+  for (const auto& name : row.attr("names").cast<py::tuple>()) {
+    fields.append(py::make_tuple(name, row.attr("fields")[name].cast<py::tuple>()[0]));
+  }
+  fields.append(py::make_tuple("X", py::dtype::of<double>()));
+  fields.append(py::make_tuple("Y", py::dtype::of<double>()));
+  return py::dtype::from_args(fields);
+}
+
 namespace {
 
 std::string shape_text(const py::array& a) {
@@ -62,6 +74,21 @@ py::array blob_table(std::int64_t frame, const pipeline::BlobList& blobs) {
     const kernels::Blob& b = blobs[i];
     *row =
         BlobRow{frame, static_cast<std::int64_t>(i), b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy};
+  }
+  return out;
+}
+
+py::array blob_table(std::int64_t frame, const pipeline::BlobList& blobs, const std::vector<cv::Point2d>& world,
+                     const py::dtype& dtype) {
+  static_assert(sizeof(BlobRowWorld) == sizeof(BlobRow) + 2 * sizeof(double), "packed as the dtype");
+  py::array out(dtype, std::vector<py::ssize_t>{static_cast<py::ssize_t>(blobs.size())});
+  auto* row = static_cast<BlobRowWorld*>(out.mutable_data());
+  for (std::size_t i = 0; i < blobs.size(); ++i, ++row) {
+    const kernels::Blob& b = blobs[i];
+    *row = BlobRowWorld{
+        {frame, static_cast<std::int64_t>(i), b.area, b.cx, b.cy, b.x0, b.y0, b.width, b.height, b.wcx, b.wcy},
+        world[i].x,
+        world[i].y};
   }
   return out;
 }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <vector>
 
 #include "pipeline/value.hpp"
 
@@ -29,7 +30,14 @@ struct BlobRow {
   double wcy;
 };
 
-/// Registers BlobRow's numpy dtype; call once from the module's init.
+/// A row with the calibration's columns: `neopipe run --calib`'s X,Y (workspace mm of wcx, wcy).
+struct BlobRowWorld {
+  BlobRow blob;
+  double X;  // NOLINT(readability-identifier-naming): the CLI's column names
+  double Y;
+};
+
+/// Registers BlobRow's and BlobRowWorld's numpy dtypes; call once from the module's init.
 void register_blob_dtype();
 
 /// `array` as a cv::Mat over the same memory: uint8, H x W (gray) or H x W x 3 (BGR, as cv2 gives
@@ -40,6 +48,11 @@ cv::Mat frame_view(const py::array& array, const char* what = "frame");
 
 /// One frame's blobs as a structured array of BlobRow, `frame` in every row.
 py::array blob_table(std::int64_t frame, const pipeline::BlobList& blobs);
+/// The same with X,Y columns, `world[i]` for blob i; `dtype` is world_blob_dtype() (made once by the caller).
+py::array blob_table(std::int64_t frame, const pipeline::BlobList& blobs, const std::vector<cv::Point2d>& world,
+                     const py::dtype& dtype);
+/// The dtype of blob_table's rows with X,Y, flat (frame, ..., wcy, X, Y), as the CLI's columns.
+py::dtype world_blob_dtype();
 
 /// An image port's value (cv::Mat) as a new numpy array (a copy: the engine reuses its buffers).
 py::array image_array(const cv::Mat& image);

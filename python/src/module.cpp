@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "bench/synthetic.hpp"
 #include "calib/correspondence.hpp"
 #include "nav/mapmaker/workspace.hpp"
 #include "pipeline/io/frame_source.hpp"
@@ -106,23 +107,45 @@ PYBIND11_MODULE(_core, m) {
       .def("__next__", &Stream::next)
       .def_property_readonly("description", &Stream::description);
 
+  const auto config = [](const Graph* graph, const py::object& threshold, int connectivity, int threads,
+                         const std::string& calib, double height) {
+    neopipe::python::StreamConfig c;
+    if (graph) c.spec = graph->spec();
+    c.builtin = neopipe::python::builtin_options(threshold, connectivity);
+    c.threads = threads;
+    c.calib = calib;
+    c.height = height;
+    return c;
+  };
   m.def(
       "stream_frames",
-      [](const Graph* graph, const py::object& threshold, int connectivity, int threads, py::iterable frames) {
-        auto builtin = neopipe::python::builtin_options(threshold, connectivity);
-        return std::make_unique<Stream>(graph ? std::optional(graph->spec()) : std::nullopt, builtin, threads,
+      [config](const Graph* graph, const py::object& threshold, int connectivity, int threads, const std::string& calib,
+               double height, const py::iterable& frames) {
+        return std::make_unique<Stream>(config(graph, threshold, connectivity, threads, calib, height),
                                         py::iter(frames));
       },
-      py::arg("graph"), py::arg("threshold"), py::arg("connectivity"), py::arg("threads"), py::arg("frames"));
+      py::arg("graph"), py::arg("threshold"), py::arg("connectivity"), py::arg("threads"), py::arg("calib"),
+      py::arg("height"), py::arg("frames"));
   m.def(
       "stream_files",
-      [](const Graph* graph, const py::object& threshold, int connectivity, int threads,
-         const std::vector<std::string>& inputs) {
-        auto builtin = neopipe::python::builtin_options(threshold, connectivity);
-        return std::make_unique<Stream>(graph ? std::optional(graph->spec()) : std::nullopt, builtin, threads, inputs);
+      [config](const Graph* graph, const py::object& threshold, int connectivity, int threads, const std::string& calib,
+               double height, const std::vector<std::string>& inputs) {
+        return std::make_unique<Stream>(config(graph, threshold, connectivity, threads, calib, height), inputs);
       },
-      py::arg("graph"), py::arg("threshold"), py::arg("connectivity"), py::arg("threads"), py::arg("inputs"));
+      py::arg("graph"), py::arg("threshold"), py::arg("connectivity"), py::arg("threads"), py::arg("calib"),
+      py::arg("height"), py::arg("inputs"));
   m.def("blob_dtype", [] { return py::dtype::of<neopipe::python::BlobRow>(); });
+  m.def("world_blob_dtype", &neopipe::python::world_blob_dtype);
+  // `neopipe bench`'s generated frames (bench/synthetic.hpp), so python/bench_python.py times the
+  // very frames the C++ figure is measured on.
+  m.def(
+      "dots_frame",
+      [](int width, int height, int count, std::uint64_t seed) {
+        if (width <= 0 || height <= 0 || count < 0) throw py::value_error("dots_frame: positive size, count >= 0");
+        return neopipe::python::image_array(neopipe::bench::make_dots_frame({width, height}, count, seed));
+      },
+      py::arg("width"), py::arg("height"), py::arg("count") = 100, py::arg("seed") = 17);
+  m.attr("dots_threshold") = neopipe::bench::dots_threshold;
 
   neopipe::python::bind_reports(m);
 }

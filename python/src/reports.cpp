@@ -200,8 +200,8 @@ py::tuple render(const World& world, const std::string& camera, const std::strin
         // Degrees, as the CLI's --pose takes them; the simulator's poses are in radians.
         p = {(*pose)[0], (*pose)[1], (*pose)[2] * std::numbers::pi / 180};
         if (!(p.x >= 0 && p.y >= 0 && p.x <= w.size.x() && p.y <= w.size.y())) {
-          throw py::value_error(fmt::format("pose ({}, {}) is outside the {} x {} mm workspace", p.x, p.y,
-                                            w.size.x(), w.size.y()));
+          throw py::value_error(
+              fmt::format("pose ({}, {}) is outside the {} x {} mm workspace", p.x, p.y, w.size.x(), w.size.y()));
         }
       }
       sim::OnboardCameraConfig c;

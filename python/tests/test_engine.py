@@ -204,3 +204,47 @@ def test_the_engine_runs_without_the_gil():
         for a, b in zip(out[name], expected):
             np.testing.assert_array_equal(a["area"], b["area"])
     assert shared.frames == 24
+
+
+def calibration_from_points(cli, folder, size):
+    """A plane homography from exact pairs (pixel -> mm: 0.5 mm per pixel, shifted), made for `size` images."""
+    pairs = folder / "pairs.csv"
+    rows = [(u, v, 0.5 * u + 10, 0.5 * v - 20) for u in (0, 100, 300, 600) for v in (0, 200, 450)]
+    pairs.write_text("u,v,X,Y\n" + "".join(f"{u},{v},{x},{y}\n" for u, v, x, y in rows))
+    out = folder / f"calib_{size}.yaml"
+    cli("calibrate", "--points", pairs, "--image-size", size, "--out", out)
+    return out
+
+
+def test_run_with_a_calibration_adds_x_y_as_the_cli(cli, opencv_data, tmp_path):
+    image = opencv_data / "left01.jpg"
+    calib = calibration_from_points(cli, tmp_path, "640x480")
+    cli("run", image, "--calib", calib, "--out", tmp_path / "xy.csv", "-q")
+    theirs = neopipe.read_table(tmp_path / "xy.csv")
+    mine = neopipe.concat(neopipe.run(image, calib=calib))
+    assert mine.dtype.names == COLUMNS + ("X", "Y") and len(mine) > 10
+    np.testing.assert_array_equal(mine, theirs)
+    np.testing.assert_allclose(mine["X"], 0.5 * mine["wcx"] + 10, atol=1e-6)
+    frames = [cv2.imread(str(image), cv2.IMREAD_GRAYSCALE)] * 2
+    tables = list(neopipe.run(frames, calib=calib))
+    np.testing.assert_array_equal(tables[0], theirs)
+
+
+def test_a_calibration_of_another_camera(cli, opencv_data, tmp_path):
+    image = opencv_data / "left01.jpg"
+    calib = calibration_from_points(cli, tmp_path, "320x240")
+    expected = cli_error(cli("run", image, "--calib", calib, check=False), "run")
+    assert "made for 320x240 images" in expected
+    with pytest.raises(RuntimeError) as e:
+        list(neopipe.run(image, calib=calib))
+    assert str(e.value) == expected
+    with pytest.raises(RuntimeError, match="made for 320x240 images, but frame 0 of frames from Python is 640x480"):
+        list(neopipe.run([cv2.imread(str(image), cv2.IMREAD_GRAYSCALE)], calib=calib))
+    # The plane homography cannot lift points above the plane; the CLI refuses --height with it too.
+    calib = calibration_from_points(cli, tmp_path, "640x480")
+    expected = cli_error(cli("run", image, "--calib", calib, "--height", 2.5, check=False), "run")
+    with pytest.raises(ValueError) as e:
+        list(neopipe.run(image, calib=calib, height=2.5))
+    assert str(e.value) == expected
+    with pytest.raises(FileNotFoundError):
+        neopipe.run(image, calib=tmp_path / "nowhere.yaml")
