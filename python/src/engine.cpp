@@ -268,8 +268,7 @@ bool Stream::feed_one() {
                                       std::string(py::str(item.get_type().attr("__name__")))));
   }
   const auto array = py::reinterpret_borrow<py::array>(item);
-  const std::string what = fmt::format("frame {}", next_index_);
-  const cv::Mat view = frame_view(array, what.c_str());
+  const cv::Mat view = frame_view(array, next_index_);
   if (!executor_) start(frame_type(view));
   const cv::Mat input = as_source(view, source_type_);
   in_flight_.emplace_back(next_index_, std::move(item));

@@ -33,17 +33,19 @@ std::string shape_text(const py::array& a) {
 
 }  // namespace
 
-cv::Mat frame_view(const py::array& a, const char* what) {
+cv::Mat frame_view(const py::array& a, std::optional<std::int64_t> index) {
+  // Formatted only on an error: this runs once per frame of a stream.
+  const auto what = [index] { return index ? fmt::format("frame {}", *index) : std::string("frame"); };
   if (a.dtype().kind() != 'u' || a.itemsize() != 1) {
-    throw py::value_error(fmt::format("{}: dtype {}; neopipe takes uint8 frames (H x W gray or H x W x 3 BGR)", what,
+    throw py::value_error(fmt::format("{}: dtype {}; neopipe takes uint8 frames (H x W gray or H x W x 3 BGR)", what(),
                                       std::string(py::str(a.dtype()))));
   }
   const bool gray = a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 1);
   if (!gray && !(a.ndim() == 3 && a.shape(2) == 3)) {
     throw py::value_error(
-        fmt::format("{}: shape {}; neopipe takes H x W (gray) or H x W x 3 (BGR) frames", what, shape_text(a)));
+        fmt::format("{}: shape {}; neopipe takes H x W (gray) or H x W x 3 (BGR) frames", what(), shape_text(a)));
   }
-  if (a.size() == 0) throw py::value_error(fmt::format("{}: shape {} is empty", what, shape_text(a)));
+  if (a.size() == 0) throw py::value_error(fmt::format("{}: shape {} is empty", what(), shape_text(a)));
   const int channels = gray ? 1 : 3;
   const py::ssize_t rows = a.shape(0);
   const py::ssize_t cols = a.shape(1);
@@ -59,9 +61,9 @@ cv::Mat frame_view(const py::array& a, const char* what) {
     throw py::value_error(fmt::format(
         "{}: strides ({}) for shape {}: neopipe reads frames in place and needs each row's pixels contiguous "
         "and rows in order (pass numpy.ascontiguousarray(frame))",
-        what, strides, shape_text(a)));
+        what(), strides, shape_text(a)));
   }
-  if (rows > INT32_MAX || cols > INT32_MAX) throw py::value_error(fmt::format("{}: too large", what));
+  if (rows > INT32_MAX || cols > INT32_MAX) throw py::value_error(fmt::format("{}: too large", what()));
   const auto step = static_cast<std::size_t>(rows == 1 ? cols * channels : a.strides(0));
   // cv::Mat takes a non-const pointer; neopipe never writes into its source frame.
   return cv::Mat(static_cast<int>(rows), static_cast<int>(cols), CV_8UC(channels), const_cast<void*>(a.data()), step);

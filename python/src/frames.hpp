@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <vector>
 
 #include "pipeline/value.hpp"
@@ -42,9 +43,10 @@ void register_blob_dtype();
 
 /// `array` as a cv::Mat over the same memory: uint8, H x W (gray) or H x W x 3 (BGR, as cv2 gives
 /// it; H x W x 1 is gray too), pixels contiguous within a row, rows in order (row padding is fine).
-/// Throws py::value_error naming `what` and the cause otherwise. The Mat does not own the memory:
+/// Throws py::value_error naming the frame and the cause otherwise. The Mat does not own the memory:
 /// the caller keeps `array` alive while the Mat is in use.
-cv::Mat frame_view(const py::array& array, const char* what = "frame");
+/// `index`, when given, names the frame in messages ("frame 3: ..."), else "frame: ...".
+cv::Mat frame_view(const py::array& array, std::optional<std::int64_t> index = std::nullopt);
 
 /// One frame's blobs as a structured array of BlobRow, `frame` in every row.
 py::array blob_table(std::int64_t frame, const pipeline::BlobList& blobs);
