@@ -5,12 +5,16 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <string>
 
 #include "bench/synthetic.hpp"
 #include "calib/correspondence.hpp"
 #include "nav/mapmaker/workspace.hpp"
+#include "pipeline/compiled_graph.hpp"
+#include "pipeline/executor.hpp"
 #include "pipeline/io/frame_source.hpp"
+#include "pipeline/kernel_registry.hpp"
 #include "pipeline/media/media.hpp"
 #include "pipeline/source_location.hpp"
 #include "python/src/engine.hpp"
@@ -146,6 +150,42 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("width"), py::arg("height"), py::arg("count") = 100, py::arg("seed") = 17);
   m.attr("dots_threshold") = neopipe::bench::dots_threshold;
+  // The C++ side of that comparison inside this process: `neopipe bench`'s timing loop for its dots
+  // case (bench/blob_bench.cpp, time_neopipe: the built-in blob graph on gray frames, submitted
+  // cyclically, three frames of warm-up) on the arrays given. Timed in turn with the Python loop,
+  // a busy machine slows both alike, which a separate `neopipe bench` process run seconds apart
+  // cannot promise.
+  m.def(
+      "time_executor",
+      [](const std::vector<py::array>& frames, int threshold, int threads, double min_seconds) {
+        std::vector<cv::Mat> images;
+        for (const auto& f : frames) images.push_back(neopipe::python::frame_view(f));
+        if (images.empty()) throw py::value_error("time_executor: no frames");
+        py::gil_scoped_release release;
+        pl::BlobGraphOptions o;
+        o.threshold = threshold;
+        o.source = pl::PortType::gray8;
+        pl::ExecutorOptions eo;
+        eo.threads = threads;
+        std::int64_t blobs = 0;
+        pl::Executor ex(pl::compile(pl::blob_graph(o), pl::standard_kernels()), eo, [&](pl::FrameResult&& r) {
+          blobs += static_cast<std::int64_t>(std::get<pl::BlobList>(r.outputs[0]).size());
+        });
+        const auto n = static_cast<std::int64_t>(images.size());
+        std::int64_t i = 0;
+        for (; i < 3; ++i) ex.submit(i, images[static_cast<std::size_t>(i % n)]);
+        ex.finish();
+        const std::int64_t start = i;
+        using Clock = std::chrono::steady_clock;
+        const auto t0 = Clock::now();
+        const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+        do {
+          for (int k = 0; k < 8; ++k, ++i) ex.submit(i, images[static_cast<std::size_t>(i % n)]);
+        } while (elapsed() < min_seconds);
+        ex.finish();
+        return static_cast<double>(i - start) / elapsed();
+      },
+      py::arg("frames"), py::arg("threshold"), py::arg("threads"), py::arg("min_seconds"));
 
   neopipe::python::bind_reports(m);
 }
