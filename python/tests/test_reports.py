@@ -145,3 +145,19 @@ def test_calibration_errors_are_the_clis(cli, opencv_data, tmp_path):
             c.image_to_world(bad)
     with pytest.raises(ValueError, match="homography"):
         c.image_to_world(np.zeros((1, 2)), height=2.5)  # the plane homography has no camera to lift points with
+
+
+def test_calibrate_from_point_pairs_as_the_cli(cli, tmp_path):
+    pairs = tmp_path / "pairs.csv"
+    rows = [(u, v, 0.25 * u - 3, 0.25 * v + 7) for u in (0, 150, 400, 630) for v in (5, 240, 470)]
+    pairs.write_text("u,v,X,Y\n" + "".join(f"{u},{v},{x},{y}\n" for u, v, x, y in rows))
+    cli("calibrate", "--points", pairs, "--image-size", "640x480", "--out", tmp_path / "c.yaml")
+    theirs = neopipe.Calibration.load(tmp_path / "c.yaml")
+    mine = neopipe.calibrate(points=pairs, image_size=(640, 480))
+    assert mine.model == theirs.model == "homography" and mine.image_size == (640, 480)
+    np.testing.assert_allclose(mine.homography, theirs.homography, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(mine.image_to_world(np.array([[100.0, 100.0]])), [[22.0, 32.0]], atol=1e-9)
+    with pytest.raises(ValueError, match="only the homography"):
+        neopipe.calibrate(points=pairs, model="full")
+    with pytest.raises(ValueError, match="either target with images, or points"):
+        neopipe.calibrate()
