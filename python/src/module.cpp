@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <string>
+#include <string_view>
 
 #include "bench/synthetic.hpp"
 #include "calib/correspondence.hpp"
@@ -32,9 +33,9 @@ namespace {
 // A file that is not there is FileNotFoundError, whoever noticed it; the message stays the library's
 // (the CLI's) one line.
 bool names_missing_file(const std::string& message) {
-  return message.find("no such file") != std::string::npos ||
-         message.find("no such calibration file") != std::string::npos ||
-         message.find("cannot open the graph spec") != std::string::npos;
+  const auto ends_with = [&message](std::string_view tail) { return message.ends_with(tail); };
+  return ends_with(": no such file") || ends_with(": no such file or directory") || ends_with(": no such image file") ||
+         ends_with(": no such calibration file") || message.find("cannot open the graph spec") != std::string::npos;
 }
 
 }  // namespace
@@ -59,6 +60,8 @@ PYBIND11_MODULE(_core, m) {
     } catch (const pl::GraphError& e) {
       const py::object cls = py::module_::import("neopipe._core").attr("GraphError");
       raise(cls.ptr(), e.what());
+    } catch (const pl::media::MediaError& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());  // the codecs' plug-in, not the caller's file
     } catch (const pl::io::SourceError& e) {
       raise(PyExc_RuntimeError, e.what());
     } catch (const neopipe::sim::WorldError& e) {

@@ -161,3 +161,15 @@ def test_calibrate_from_point_pairs_as_the_cli(cli, tmp_path):
         neopipe.calibrate(points=pairs, model="full")
     with pytest.raises(ValueError, match="either target with images, or points"):
         neopipe.calibrate()
+
+
+def test_a_missing_target_image_is_file_not_found_as_the_cli_says(cli, tmp_path):
+    missing = tmp_path / "nowhere.png"
+    completed = cli("calibrate", "--target", "chessboard:9x6:25mm", missing, "--out", tmp_path / "c.yaml", "-q",
+                    check=False)
+    with pytest.raises(FileNotFoundError) as e:
+        neopipe.calibrate([missing], "chessboard:9x6:25mm")
+    assert str(e.value) == cli_error(completed, "calibrate")
+    with pytest.raises(FileNotFoundError) as e:
+        neopipe.sim.load_world(tmp_path / "nowhere.yaml")
+    assert str(e.value).endswith("nowhere.yaml: no such file")
