@@ -248,3 +248,36 @@ def test_a_calibration_of_another_camera(cli, opencv_data, tmp_path):
     assert str(e.value) == expected
     with pytest.raises(FileNotFoundError):
         neopipe.run(image, calib=tmp_path / "nowhere.yaml")
+
+
+def test_process_releases_the_interpreter_lock():
+    """While one thread is inside graph.process, another runs Python: it never waits the whole call out."""
+    import sys
+    import time
+    rng = np.random.default_rng(3)
+    frame = rng.integers(0, 256, (3000, 4000), dtype=np.uint8)
+    graph = neopipe.Graph.blobs(threshold=128, connectivity=4)  # noise: a great many blobs, a long call
+    graph.process(frame)
+    call = {}
+
+    def work():
+        call["start"] = time.perf_counter()
+        graph.process(frame)
+        call["end"] = time.perf_counter()
+
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1e-4)
+    try:
+        stamps = []
+        t = threading.Thread(target=work)
+        t.start()
+        while t.is_alive():
+            stamps.append(time.perf_counter())
+        t.join()
+    finally:
+        sys.setswitchinterval(old)
+    inside = np.array([s for s in stamps if call["start"] <= s <= call["end"]])
+    duration = call["end"] - call["start"]
+    assert duration > 0.02 and len(inside) > 10
+    gaps = np.diff(np.concatenate([[call["start"]], inside, [call["end"]]]))
+    assert gaps.max() < duration / 2, f"the main thread stood still {gaps.max():.3f} s of a {duration:.3f} s call"
