@@ -3,58 +3,21 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <numbers>
-#include <regex>
 #include <sstream>
 
 #include "apps/cli_support.hpp"
 #include "apps/progress.hpp"
 #include "calib/calibration.hpp"
-#include "calib/plane_pose.hpp"
-#include "calib/chessboard.hpp"
-#include "calib/dot_grid_detector.hpp"
 #include "calib/estimate.hpp"
-#include "calib/grid_labelling.hpp"
+#include "calib/image_calibration.hpp"
+#include "calib/plane_pose.hpp"
 #include "calib/points_csv.hpp"
 #include "calib/residual_plot.hpp"
-#include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
 namespace {
-
-struct TargetSpec {
-  bool dots = false;
-  int cols = 0;
-  int rows = 0;
-  double pitch = 0;  ///< mm
-};
-
-TargetSpec parse_target(const std::string& text) {
-  static const std::regex form(R"((dots|chessboard):(\d+)x(\d+):([0-9]*\.?[0-9]+)(mm)?)");
-  std::smatch m;
-  if (!std::regex_match(text, m, form)) {
-    throw UsageError{"--target " + text + ": expected dots:COLSxROWS:PITCHmm or chessboard:COLSxROWS:SQUAREmm"};
-  }
-  TargetSpec t;
-  t.dots = m[1] == "dots";
-  t.cols = std::stoi(m[2]);
-  t.rows = std::stoi(m[3]);
-  t.pitch = std::stod(m[4]);
-  if (t.cols < 2 || t.rows < 2 || t.cols * t.rows < 4 || !(t.pitch > 0)) {
-    throw UsageError{"--target " + text + ": needs at least 2 x 2 points and a positive pitch"};
-  }
-  return t;
-}
-
-// Target plane -> workspace: the first point at (X, Y), the column axis turned THETA degrees from East.
-Eigen::Vector2d on_workspace(const std::vector<double>& origin, const Eigen::Vector2d& target) {
-  const double a = origin[2] * std::numbers::pi / 180;
-  return {origin[0] + std::cos(a) * target.x() - std::sin(a) * target.y(),
-          origin[1] + std::sin(a) * target.x() + std::cos(a) * target.y()};
-}
 
 std::vector<double> parse_origin(const std::string& text) {
   std::vector<double> v;
@@ -100,14 +63,6 @@ void print_report(const calib::Calibration& c, const std::string& out) {
   std::cerr << "  -> " << out << '\n';
 }
 
-cv::Mat read_image(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw calib::CalibrationError(path + ": no such image file");
-  cv::Mat img = pipeline::media::read_image(path, pipeline::media::ImageMode::gray);
-  if (img.empty()) throw calib::CalibrationError(path + ": cannot be read as an image");
-  return img;
-}
-
 void plot_residuals(const calib::Calibration& c, const calib::Correspondences& points, const std::string& title,
                     const std::string& path) {
   std::vector<Eigen::Vector2d> pixels;
@@ -121,57 +76,26 @@ void plot_residuals(const calib::Calibration& c, const calib::Correspondences& p
 }
 
 calib::Calibration from_images(const CalibrateArgs& a) {
-  const TargetSpec t = parse_target(a.target);
-  const auto origin = a.origin.empty() ? std::vector<double>{0, 0, 0} : parse_origin(a.origin);
-  std::vector<calib::View> views;
-  calib::Correspondences workspace;
-  std::vector<std::string> rejected;
-  cv::Size size;
-  ProgressBar bar("neopipe calibrate", static_cast<std::int64_t>(a.images.size()), !a.quiet);
-  for (std::size_t n = 0; n < a.images.size(); ++n) {
-    const std::string& path = a.images[n];
-    const cv::Mat img = read_image(path);
-    if (n == 0) size = img.size();
-    if (img.size() != size) {
-      throw calib::CalibrationError(
-          fmt::format("{}: {}x{} pixels, but {} is {}x{}: every view must come from the "
-                      "same camera",
-                      path, img.cols, img.rows, a.images[0], size.width, size.height));
-    }
-    const auto found = t.dots ? calib::find_dot_grid(img, t.cols, t.rows) : calib::find_chessboard(img, t.cols, t.rows);
-    bar.update(static_cast<std::int64_t>(n + 1));
-    if (!found) {
-      if (n == 0) {
-        throw calib::CalibrationError(path +
-                                      ": the target was not found in the first image, the one lying on the "
-                                      "workspace");
-      }
-      rejected.push_back(path + ": target not found");
-      continue;
-    }
-    calib::View v{path, {}};
-    for (int j = 0; j < t.rows; ++j) {
-      for (int i = 0; i < t.cols; ++i) {
-        const Eigen::Vector2d plane(i * t.pitch, j * t.pitch);
-        const Eigen::Vector2d px = (*found)[calib::grid_index(i, j, t.cols)];
-        v.points.push_back({px, plane});
-        if (n == 0) workspace.push_back({px, on_workspace(origin, plane)});
-      }
-    }
-    views.push_back(std::move(v));
+  calib::ImageCalibrationOptions o;
+  try {
+    o.target = calib::parse_target(a.target);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError{e.what()};
   }
+  if (!a.origin.empty()) {
+    const auto origin = parse_origin(a.origin);
+    o.origin = {origin[0], origin[1], origin[2]};
+  }
+  o.model = a.model;
+  o.inlier_mm = a.inlier_mm;
+  ProgressBar bar("neopipe calibrate", static_cast<std::int64_t>(a.images.size()), !a.quiet);
+  o.progress = [&](std::size_t done) { bar.update(static_cast<std::int64_t>(done)); };
+  calib::ImageCalibration result = calib::calibrate_images(a.images, o);
   bar.clear();
-  const bool full = a.model == "full" || (a.model == "auto" && views.size() >= 3);
-  calib::EstimateOptions o;
-  o.ransac.inlier_mm = a.inlier_mm;
-  calib::Calibration c =
-      full ? calib::calibrate_full(views, workspace, size, o) : calib::calibrate_homography(workspace, size, o);
-  c.report.views_used = static_cast<int>(full ? views.size() : 1);
-  c.report.views_rejected = static_cast<int>(rejected.size());
-  c.report.rejected = rejected;
+  calib::Calibration& c = result.calibration;
   if (!a.plot.empty()) {
-    plot_residuals(c, workspace, fmt::format("{} model, {} ({})", calib::model_name(c.model), a.images[0], a.target),
-                   a.plot);
+    plot_residuals(c, result.workspace,
+                   fmt::format("{} model, {} ({})", calib::model_name(c.model), a.images[0], a.target), a.plot);
   }
   return c;
 }

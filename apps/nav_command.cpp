@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "apps/cli_support.hpp"
 #include "apps/map_plot.hpp"
@@ -15,14 +14,13 @@
 #include "apps/progress.hpp"
 #include "apps/reliability_diagram.hpp"
 #include "nav/mapmaker/map_maker.hpp"
-#include "rig/calibration_cache.hpp"
 #include "rig/experiment.hpp"
 #include "rig/journey.hpp"
 #include "rig/park_kender.hpp"
+#include "rig/reports.hpp"
 #include "rig/seeds.hpp"
 #include "rig/survey.hpp"
 #include "rig/trials.hpp"
-#include "sim/realism.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::apps {
@@ -32,58 +30,35 @@ namespace mm = nav::mapmaker;
 namespace nv = nav::navigator;
 using nlohmann::json;
 
-void check_non_negative(const char* option, double value, const char* unit) {
-  if (!(value >= 0) || !std::isfinite(value))
-    throw UsageError{fmt::format("{} {}: must be >= 0 {}", option, value, unit)};
+using Setup = rig::NavSetup;
+
+rig::NavRequest nav_request(const NavArgs& a) {
+  rig::NavRequest r;
+  r.world = a.world;
+  r.cost = a.cost;
+  r.sigma_map = a.sigma_map;
+  r.realism = a.realism;
+  r.cache_dir = a.cache_dir;
+  r.no_cache = a.no_cache;
+  r.sigma_move = a.sigma_move;
+  r.sigma_rot = a.sigma_rot;
+  r.seed = a.seed;
+  r.no_recovery = a.no_recovery;
+  r.navigator = a.navigator;
+  r.descriptions = a.descriptions;
+  r.min_reliability = a.min_reliability;
+  r.window = a.window;
+  r.threads = a.threads;
+  r.note = [](const std::string& line) { std::cerr << "neopipe nav: " << line << '\n'; };
+  return r;
 }
 
-struct Setup {
-  sim::World world;
-  rig::Survey survey;
-  rig::ExperimentSettings settings;
-};
-
 Setup make_setup(const NavArgs& a) {
-  if (!(a.window > 0) || !std::isfinite(a.window))
-    throw UsageError{fmt::format("--window {}: must be > 0 mm", a.window)};
-  if (a.sigma_map) check_non_negative("--sigma-map", *a.sigma_map, "mm");
-  check_non_negative("--sigma-move", a.sigma_move, "mm per mm");
-  check_non_negative("--sigma-rot", a.sigma_rot, "degrees per mm");
-  Setup s;
-  s.world = sim::load_world(a.world);  // WorldError: one line naming the file
-  if (s.world.objects.size() < 2) {
-    throw mm::MapError(
-        fmt::format("{}: the world has {} objects; a journey needs at least two", a.world, s.world.objects.size()));
+  try {
+    return rig::nav_setup(nav_request(a));
+  } catch (const rig::RequestError& e) {
+    throw UsageError{e.what()};
   }
-  if (a.window > std::min(s.world.size.x(), s.world.size.y())) {
-    throw mm::MapError(
-        fmt::format("--window {} mm is larger than the {}x{} mm world", a.window, s.world.size.x(), s.world.size.y()));
-  }
-  const sim::Realism realism = sim::parse_realism(a.realism);  // checked by the option already
-  if (a.sigma_map) {
-    s.survey = rig::gaussian_survey(s.world, *a.sigma_map, a.seed);
-  } else {
-    rig::SurveySettings survey;
-    survey.camera.realism = realism;
-    survey.camera.seed = a.seed;
-    if (!a.no_cache) {
-      survey.cache_dir = a.cache_dir.empty() ? rig::CalibrationCache::default_dir()
-                                             : std::optional<std::filesystem::path>(a.cache_dir);
-    }
-    survey.note = [](const std::string& line) { std::cerr << "neopipe nav: " << line << '\n'; };
-    s.survey = rig::global_camera_survey(s.world, survey);
-  }
-  rig::ExperimentConfig config;
-  config.window = a.window;
-  config.arm = {a.sigma_move, a.sigma_rot};
-  config.recovery = !a.no_recovery;
-  config.track_heading = a.navigator == "tracking";
-  config.extended_descriptions = a.descriptions == "extended";
-  config.min_reliability = a.min_reliability;
-  config.seed = a.seed;
-  config.realism = realism;
-  s.settings = rig::derive_settings(config, s.survey.sigma);
-  return s;
 }
 
 // The surveyed position of every object beside its true one: what the map-maker believed, for
@@ -101,42 +76,12 @@ void write_survey_csv(const std::string& path, const Setup& s) {
   if (!out.flush()) throw std::runtime_error(fmt::format("--survey-csv {}: write failed", path));
 }
 
-json survey_json(const rig::Survey& s) {
-  json j = {{"method", s.method}, {"sigma", s.sigma}, {"rms_error", s.rms_error}, {"max_error", s.max_error}};
-  if (s.session) {
-    j["realism"] = s.realism;
-    j["plate_held_out_rms"] = s.session->plate_held_out_mm.rms;
-    j["centroid_lean_held_out_px"] = s.session->bias_held_out_px.rms;
-    j["calibration_held_out_rms"] = s.session->calibration.report.held_out.rms;
-    j["board_thickness"] = s.session->plane_height;
-  }
-  return j;
-}
-
 std::string survey_line(const rig::Survey& s) {
   return fmt::format(
       "survey: {}, position sd {:.4f} mm as the map-maker is told; against the truth RMS {:.4f} mm, max {:.4f} mm",
       s.method == "global_camera" ? fmt::format("global camera ({} realism) + calibration", s.realism)
                                   : std::string("Gaussian error"),
       s.sigma, s.rms_error, s.max_error);
-}
-
-// "TRAJP 47 -> 75": the step a journey first went wrong at, for grouping failures by kind.
-std::string step_name(const mm::RouteStep& step) {
-  return fmt::format("{} {} -> {}", mm::step_description(step.step), step.step.from.object, step.step.landmark);
-}
-
-// Each planned step's kind, rated reliability and verifiability, for fitting and checking the
-// forecast journey by journey.
-json steps_json(const mm::Route& route) {
-  json steps = json::array();
-  for (const mm::RouteStep& s : route.steps) {
-    steps.push_back({{"step", step_name(s)},
-                     {"R", s.step.reliability},
-                     {"forecast", s.step.forecast},
-                     {"check", mm::verifiability_name(s.check.kind)}});
-  }
-  return steps;
 }
 
 json held_json(const rig::JourneyResult& r, std::size_t entry) {
@@ -201,7 +146,7 @@ int one_journey(const NavArgs& a, const Setup& s) {
               {"commanded_travel", r.arm.commanded_travel},
               {"arm_travel", r.arm.true_travel},
               {"refused_moves", r.arm.refused_moves},
-              {"survey", survey_json(s.survey)},
+              {"survey", rig::survey_json(s.survey)},
               {"seed", a.seed}};
     json list = json::array();
     for (std::size_t e = 0; e < entries.size(); ++e) {
@@ -264,30 +209,16 @@ int one_journey(const NavArgs& a, const Setup& s) {
 }
 
 int trials(const NavArgs& a, const Setup& s) {
-  const auto system = rig::make_park_kender(s.survey, s.settings, *mm::parse_criterion(a.cost));
-  const std::vector<std::unique_ptr<rig::Plan>> plans =
-      rig::draw_plans(*system, s.world.objects.size(), *a.trials, a.seed);
   ProgressBar bar("nav", *a.trials, true);
-  const rig::TrialsSummary t = rig::run_trials(*system, plans, s.world, s.settings.journey, a.threads,
-                                               [&](std::int64_t done) { bar.update(done); });
-  bar.clear();
-  // Rates are over the journeys run: a refused plan is not a failure, it is counted apart.
-  const std::int64_t asked = std::ssize(t.trials);
-  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
-  const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
-  const double mean_travel = t.true_travel / static_cast<double>(n);
-  const double mean_commanded = t.commanded_travel / static_cast<double>(n);
-  const double mean_planned = t.mean_planned_reliability();
-  // Recoveries by kind: the map's QOC rules, and returns to an earlier landmark for another choice.
-  std::int64_t backtracks = 0;
-  std::int64_t rule_recoveries = 0;
-  for (const rig::TrialRecord& r : t.trials) {
-    backtracks += r.backtracks;
-    rule_recoveries += r.recoveries - r.backtracks;
+  rig::TrialsReport report;
+  try {
+    report = rig::trials_report(nav_request(a), s, *a.trials, [&](std::int64_t done) { bar.update(done); });
+  } catch (const rig::RequestError& e) {
+    throw UsageError{e.what()};
   }
-  double mean_planned_distance = 0;
-  for (const auto& p : plans)
-    if (p->refused.empty()) mean_planned_distance += p->planned_distance / static_cast<double>(n);
+  bar.clear();
+  const rig::TrialsSummary& t = report.summary;
+  const json& j = report.json;
   if (!a.diagram.empty()) {
     std::vector<ForecastOutcome> forecasts;
     for (const rig::TrialRecord& r : t.trials)
@@ -299,70 +230,11 @@ int trials(const NavArgs& a, const Setup& s) {
         a.diagram);
   }
   if (a.json) {
-    json outcomes;
-    json rates;
-    json ci;
-    for (const rig::Outcome o : rig::kOutcomes) {
-      const std::string name(rig::outcome_name(o));
-      outcomes[name] = t.count(o);
-      rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
-      const rig::Interval w = rig::wilson_interval(t.count(o), n);
-      ci[name] = {w.low, w.high};
-    }
-    const rig::Interval reached = rig::wilson_interval(t.reached(), n);
-    // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
-    // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
-    json journeys = json::array();
-    for (std::size_t i = 0; i < t.trials.size(); ++i) {
-      const rig::TrialRecord& r = t.trials[i];
-      const mm::Route& route = rig::route_of(*plans[i]);
-      journeys.push_back({{"from", r.from},
-                          {"to", r.to},
-                          {"planned_reliability", r.planned_reliability},
-                          {"outcome", r.refused ? "refused" : rig::outcome_name(r.outcome)},
-                          {"reason", r.reason},
-                          {"first_wrong_entry", r.first_wrong_entry ? json(*r.first_wrong_entry) : json(nullptr)},
-                          {"first_wrong_step", r.first_wrong_entry && *r.first_wrong_entry > 0
-                                                   ? json(step_name(route.steps.at(*r.first_wrong_entry - 1)))
-                                                   : json(nullptr)},
-                          {"steps", steps_json(route)},
-                          {"recoveries", r.recoveries},
-                          {"backtracks", r.backtracks},
-                          {"frames", r.frames},
-                          {"arm_travel", r.true_travel}});
-    }
-    const json j = {{"trials", asked},
-                    {"run", t.run()},
-                    {"refused", t.refused},
-                    {"min_reliability", a.min_reliability},
-                    {"outcomes", outcomes},
-                    {"rates", rates},
-                    {"ci95", ci},
-                    {"reached_goal", t.reached()},
-                    {"reached_goal_rate", static_cast<double>(t.reached()) / static_cast<double>(n)},
-                    {"reached_goal_ci95", {reached.low, reached.high}},
-                    {"frames", t.frames},
-                    {"seconds", t.seconds},
-                    {"frames_per_second", fps},
-                    {"mean_arm_travel", mean_travel},
-                    {"mean_commanded_travel", mean_commanded},
-                    {"cost", a.cost},
-                    {"survey", survey_json(s.survey)},
-                    {"sigma_map", s.survey.sigma},
-                    {"mean_planned_reliability", mean_planned},
-                    {"mean_planned_distance", mean_planned_distance},
-                    {"recoveries", {{"qoc_rules", rule_recoveries}, {"backtracks", backtracks}}},
-                    {"sigma_move", a.sigma_move},
-                    {"sigma_rot", a.sigma_rot},
-                    {"window", a.window},
-                    {"recovery", !a.no_recovery},
-                    {"navigator", a.navigator},
-                    {"descriptions", a.descriptions},
-                    {"seed", a.seed},
-                    {"journeys", journeys}};
     std::cout << j.dump() << '\n';
     return kExitOk;
   }
+  const std::int64_t asked = std::ssize(t.trials);
+  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   std::cout << fmt::format(
       "{} journeys on {} ({} objects), cost {}, move {} /mm, rotation {} deg/mm, recovery {}, seed {}\n{}\n\n"
       "{:<20} {:>7} {:>8}  {}\n",
@@ -383,8 +255,10 @@ int trials(const NavArgs& a, const Setup& s) {
       "\nplanned: mean D {:.1f} mm; the map-maker forecast {:.2f}% of the journeys to reach the goal (mean R)\n"
       "recoveries: {} by the map's QOC rules, {} returns to an earlier landmark for another choice\n"
       "frames {} in {:.2f} s: {:.0f} frames/s; mean arm travel {:.1f} mm (commanded {:.1f} mm)\n",
-      mean_planned_distance, 100 * mean_planned, rule_recoveries, backtracks, t.frames, t.seconds, fps, mean_travel,
-      mean_commanded);
+      j["mean_planned_distance"].get<double>(), 100 * j["mean_planned_reliability"].get<double>(),
+      j["recoveries"]["qoc_rules"].get<std::int64_t>(), j["recoveries"]["backtracks"].get<std::int64_t>(), t.frames,
+      t.seconds, j["frames_per_second"].get<double>(), j["mean_arm_travel"].get<double>(),
+      j["mean_commanded_travel"].get<double>());
   return kExitOk;
 }
 

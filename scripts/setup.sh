@@ -26,6 +26,9 @@ if [ "${1:-}" != "--demo" ]; then
     opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
     dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source
     clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtimes for clang (scripts/fuzz.sh)
+    pybind11-dev python3-dev python3-numpy  # the Python module (python/)
+    python3-pytest python3-opencv           # the Python module's tests (cv2 is the reference they compare with)
+    python3-pandas python3-matplotlib       # optional for the module; examples/python uses them
   )
 fi
 

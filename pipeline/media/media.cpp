@@ -35,6 +35,11 @@ std::vector<std::string> plugin_candidates() {
     add(exe.parent_path() / kPluginFile);
     add(exe.parent_path() / NEOPIPE_MEDIA_PLUGIN_RELATIVE_DIR / kPluginFile);
   }
+  // Beside the shared object this code was linked into, when that is not the program: the Python
+  // module (python/) carries its plug-in in its package directory, wherever that is installed.
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<const void*>(&plugin_candidates), &self) != 0 && self.dli_fname != nullptr)
+    add(fs::path(self.dli_fname).parent_path() / kPluginFile);
   add(NEOPIPE_MEDIA_PLUGIN_PATH);
   return paths;
 }
