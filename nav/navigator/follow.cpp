@@ -8,7 +8,8 @@
 // the landmark held before the entry that failed, to take that entry's next candidate when its QOC
 // proved the landmark wrong, or else to the one held before the previous entry, to take the
 // previous entry's next candidate (the same slide with the window beside the track on either side,
-// then the second object to enter it; the next most isolated; the next object of an Obvious view).
+// by one and two offsets, then the second object to enter it; the next most isolated; the next
+// object of an Obvious view).
 // A depth-first search over candidates, bounded per entry and per journey.
 
 #include <fmt/format.h>
@@ -37,8 +38,8 @@ std::optional<Failure> take_start(Pilot& pilot, const MapEntry& entry, detail::H
 }
 
 // A slide's k-th candidate: the first newcomer on the map's track, then (when the navigator has an
-// offset) the first newcomer with the window moved beside the track on one side and the other, then
-// the later newcomers on the track.
+// offset) the first newcomer with the window moved beside the track on one side and the other, by
+// the offset and then by twice it, then the later newcomers on the track.
 struct SlideTry {
   int skip = 0;
   double offset = 0;

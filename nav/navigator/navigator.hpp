@@ -63,7 +63,8 @@ struct NavigatorConfig {
   bool recovery = true;           ///< apply the map's recovery rules and backtrack (off: the "no recovery" runs)
   /// Candidates an entry may take after the description's choice, and returns to an earlier landmark
   /// a journey may make, when what follows a choice leads nowhere (follow.cpp). A slide's
-  /// candidates are the slide beside the track on either side (slide_offset), then the next newcomer.
+  /// candidates are the slide beside the track on either side, slide_offset and then twice that
+  /// away, then the next newcomers.
   int max_alternatives = 5;
   int max_backtracks = 6;
   /// What the navigator expects of its arm's unintended turns (sd per move: turn_sigma0 +
