@@ -46,7 +46,10 @@ struct SlideTry {
 };
 SlideTry slide_try(int candidate, double offset) {
   if (offset <= 0 || candidate == 0) return {candidate, 0.0};
-  if (candidate <= 4) return {0, (candidate % 2 == 1 ? offset : -offset) * ((candidate + 1) / 2)};
+  if (candidate <= 4) {
+    const int times = (candidate + 1) / 2;  // 1, 1, 2, 2: one offset away, then two
+    return {0, (candidate % 2 == 1 ? offset : -offset) * times};
+  }
   return {candidate - 4, 0.0};
 }
 
