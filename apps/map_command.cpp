@@ -37,31 +37,31 @@ Eigen::Vector2d parse_size(const std::string& text) {
 CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "map", "Map-maker: parkways, trajectories, QOC of a world; with --from/--to the best route and its custom map");
-  cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)");
-  cmd->add_option("--blobs", a.blobs,
+  cmd->add_option("--world", a.request.world, "World file (YAML, as neopipe sim world writes)");
+  cmd->add_option("--blobs", a.request.blobs,
                   "Or a blob table with workspace X,Y (neopipe run --calib ... --format csv); its first frame");
   cmd->add_option("--size", a.size, "Workspace WxH in mm for --blobs (default 500x500)");
-  cmd->add_option("--window", a.window, "Navigator's view window side a, mm")->capture_default_str();
-  cmd->add_option("--margin", a.margin, "Corner margin m, mm (default 0.05 a)");
-  cmd->add_option("--sigma", a.sigma, "Position error sd per axis, mm (default: from --calib, else 1)");
-  cmd->add_option("--calib", a.calib, "Calibration file (neopipe calibrate): sigma = its held-out sd");
-  cmd->add_option("--border-tolerance", a.border_tolerance,
+  cmd->add_option("--window", a.request.window, "Navigator's view window side a, mm")->capture_default_str();
+  cmd->add_option("--margin", a.request.margin, "Corner margin m, mm (default 0.05 a)");
+  cmd->add_option("--sigma", a.request.sigma, "Position error sd per axis, mm (default: from --calib, else 1)");
+  cmd->add_option("--calib", a.request.calib, "Calibration file (neopipe calibrate): sigma = its held-out sd");
+  cmd->add_option("--border-tolerance", a.request.border_tolerance,
                   "mm: objects this close to a quadrant border may fall either side; verification and recovery "
                   "rules hold both ways (neopipe nav uses 3 sqrt(2) sigma + 0.65)")
       ->capture_default_str();
-  cmd->add_option("--descriptions", a.descriptions,
+  cmd->add_option("--descriptions", a.request.descriptions,
                   "paper: describe landmarks as the paper does (Obvious, Isol); extended: also Far and Near, the "
                   "objects in view farthest from and nearest to the reference")
       ->check(CLI::IsMember({"paper", "extended"}))
       ->capture_default_str();
-  cmd->add_option("--move-error", a.move_error, "Navigator's across-track error, sd mm per mm moved")
+  cmd->add_option("--move-error", a.request.move_error, "Navigator's across-track error, sd mm per mm moved")
       ->capture_default_str();
-  cmd->add_option("--rotation-error", a.rotation_error, "Navigator's heading error, sd degrees per mm moved")
+  cmd->add_option("--rotation-error", a.request.rotation_error, "Navigator's heading error, sd degrees per mm moved")
       ->capture_default_str();
-  cmd->add_option("--from", a.from, "Start object id");
-  cmd->add_option("--to", a.to, "Goal object id");
-  add_cost_option(cmd, a.cost);
-  cmd->add_option("--reliable-threshold", a.reliable_threshold,
+  cmd->add_option("--from", a.request.from, "Start object id");
+  cmd->add_option("--to", a.request.to, "Goal object id");
+  add_cost_option(cmd, a.request.cost);
+  cmd->add_option("--reliable-threshold", a.request.reliable_threshold,
                   "Selection reliability an edge needs to belong to the reliable parkway")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
@@ -72,22 +72,8 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
 }
 
 int map_command(const MapArgs& a) {
-  rig::MapRequest r;
-  r.world = a.world;
-  r.blobs = a.blobs;
+  rig::MapRequest r = a.request;
   if (!a.size.empty()) r.size = parse_size(a.size);
-  r.window = a.window;
-  r.margin = a.margin;
-  r.sigma = a.sigma;
-  r.border_tolerance = a.border_tolerance;
-  r.descriptions = a.descriptions;
-  r.calib = a.calib;
-  r.move_error = a.move_error;
-  r.rotation_error = a.rotation_error;
-  r.from = a.from;
-  r.to = a.to;
-  r.cost = a.cost;
-  r.reliable_threshold = a.reliable_threshold;
   rig::MapReport m;
   try {
     m = rig::map_report(r);
@@ -109,7 +95,7 @@ int map_command(const MapArgs& a) {
         "strongly connected components: {} with parkways, {} with trajectories too\n",
         j["objects"].get<std::uint32_t>(), j["window"]["side"].get<double>(), j["window"]["margin"].get<double>(),
         j["sigma"].get<double>(), p["general"].size(), p["obvious"].size(), p["isolated"].size(),
-        j["trajectories"].size(), a.reliable_threshold, p["reliable"]["obvious"].size(),
+        j["trajectories"].size(), r.reliable_threshold, p["reliable"]["obvious"].size(),
         p["reliable"]["isolated"].size(), p["detectable"]["obvious"].size(), p["detectable"]["isolated"].size(),
         p["recoverable"]["obvious"].size(), p["recoverable"]["isolated"].size(),
         j["strongly_connected"]["parkways"].get<std::size_t>(),
