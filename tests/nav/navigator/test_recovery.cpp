@@ -232,12 +232,6 @@ TEST(SlideRetry, ASlideThatPassesBesideItsGoalIsTriedAgainBesideTheTrack) {
   }
 }
 
-}  // namespace
-}  // namespace neopipe::nav::navigator
-
-namespace neopipe::nav::navigator {
-namespace {
-
 // The direction's landmark lies just beyond the window's edge, as a cap (the seek takes it from
 // there); the slide towards it brings it in first. It is known, never the goal: the slide goes on to
 // the marble the map describes. (Found on a 1.5 mm survey, where this one mistake lost 18% of the
@@ -256,12 +250,6 @@ TEST(SlideDirection, TheDirectionsLandmarkEnteringIsNotTheGoal) {
   EXPECT_NE(j.final_object, kV);
   EXPECT_EQ(j.final_object, kG);
 }
-
-}  // namespace
-}  // namespace neopipe::nav::navigator
-
-namespace neopipe::nav::navigator {
-namespace {
 
 // The first marble a slide meets has the goal's QOC count but in another quadrant: the count passes
 // it, the quadrants the map names do not, and the navigator goes on to the next newcomer.
