@@ -36,7 +36,7 @@ constexpr double kBlobSweepRadius = 3;
 // out (with a note): the frame is full, and the row would repeat the one before.
 constexpr double kBlobSweepFill = 0.9;
 
-cv::Size parse_size(const std::string& s) {
+cv::Size parse_frame_size(const std::string& s) {
   static const std::regex kSize(R"((\d{1,5})x(\d{1,5}))");
   std::smatch m;
   if (!std::regex_match(s, m, kSize)) throw UsageError{"--size " + s + ": expected WxH, e.g. 640x480"};
@@ -87,7 +87,7 @@ Plan make_plan(const BenchArgs& a, int all) {
   plan.sweep = a.sweep;
   plan.threads = thread_counts(a, all);
   std::vector<cv::Size> sizes;
-  for (const auto& s : a.sizes) sizes.push_back(parse_size(s));
+  for (const auto& s : a.sizes) sizes.push_back(parse_frame_size(s));
   std::vector<std::string> cases = a.cases;
   if (cases.empty() && (a.video.empty() || !a.sweep.empty())) {
     cases = a.sweep.empty() ? bench::case_names : std::vector<std::string>{"dots"};

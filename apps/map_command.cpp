@@ -19,7 +19,7 @@ namespace {
 namespace mm = nav::mapmaker;
 using nlohmann::json;
 
-Eigen::Vector2d parse_size(const std::string& text) {
+Eigen::Vector2d parse_world_size(const std::string& text) {
   const auto x = text.find('x');
   double w = 0;
   double h = 0;
@@ -73,7 +73,7 @@ CLI::App* add_map_command(CLI::App& app, MapArgs& a) {
 
 int map_command(const MapArgs& a) {
   rig::MapRequest r = a.request;
-  if (!a.size.empty()) r.size = parse_size(a.size);
+  if (!a.size.empty()) r.size = parse_world_size(a.size);
   rig::MapReport m;
   try {
     m = rig::map_report(r);

@@ -210,16 +210,12 @@ cv::Mat png(const Drawing& d) {
   return small;
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 void write_map_plot(const mm::MapMaker& maker, const std::optional<mm::Route>& route, const std::string& path,
                     const ExecutedRoute* executed) {
-  const bool is_svg = ends_with(path, ".svg");
-  if (!is_svg && !ends_with(path, ".png")) {
+  const bool is_svg = path.ends_with(".svg");
+  if (!is_svg && !path.ends_with(".png")) {
     throw std::runtime_error(fmt::format("--plot {}: the picture must be a .png or .svg file", path));
   }
   const Drawing d = draw(maker, route, executed);

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "apps/chart_colours.hpp"
 #include "pipeline/media/media.hpp"
 
 namespace neopipe::apps {
@@ -21,9 +22,6 @@ constexpr std::size_t kObvious = 3;
 constexpr std::size_t kIsolated = 4;
 constexpr std::size_t kWithTrajectories = 5;
 constexpr std::size_t kNewParkways = 9;
-
-const cv::Scalar kBlack(0, 0, 0);
-const cv::Scalar kGrey(200, 200, 200);
 
 // Matplotlib's tab10, BGR: distinct for up to ten curves.
 cv::Scalar palette(std::size_t i) {
@@ -94,21 +92,21 @@ class Panel {
     const cv::Size size = cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
     // align: 0 left, 1 centred, 2 right
     at.x -= align * size.width / 2;
-    cv::putText(image_, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kBlack, 1, cv::LINE_AA);
+    cv::putText(image_, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kChartInk, 1, cv::LINE_AA);
   }
 
   void axes(double xs, double ys) {
     for (double x = 0; x <= x_max_ + 1e-9; x += xs) {
-      cv::line(image_, px(x, 0), px(x, y_max_), kGrey, 1);
-      cv::line(image_, px(x, 0), px(x, 0) + cv::Point(0, 5), kBlack, 1);
+      cv::line(image_, px(x, 0), px(x, y_max_), kChartGrid, 1);
+      cv::line(image_, px(x, 0), px(x, 0) + cv::Point(0, 5), kChartInk, 1);
       text(fmt::format("{:g}", x), px(x, 0) + cv::Point(0, 22), 0.42, 1);
     }
     for (double y = 0; y <= y_max_ + 1e-9; y += ys) {
-      cv::line(image_, px(0, y), px(x_max_, y), kGrey, 1);
-      cv::line(image_, px(0, y), px(0, y) - cv::Point(5, 0), kBlack, 1);
+      cv::line(image_, px(0, y), px(x_max_, y), kChartGrid, 1);
+      cv::line(image_, px(0, y), px(0, y) - cv::Point(5, 0), kChartInk, 1);
       text(fmt::format("{:g}", y), px(0, y) + cv::Point(-9, 5), 0.42, 2);
     }
-    cv::rectangle(image_, plot_, kBlack, 1);
+    cv::rectangle(image_, plot_, kChartInk, 1);
     text(title_, {plot_.x + plot_.width / 2, plot_.y - 14}, 0.55, 1);
     text(x_label_, {plot_.x + plot_.width / 2, plot_.y + plot_.height + 45}, 0.5, 1);
     // A vertical label would need rotated text; above the axis reads as well.
@@ -161,7 +159,7 @@ class Panel {
     // Top left: counts grow with population, so that corner stays clear.
     const cv::Rect box(plot_.x + 8, plot_.y + 6, width + 44, row * static_cast<int>(series.size()) + 8);
     cv::rectangle(image_, box, cv::Scalar(255, 255, 255), cv::FILLED);
-    cv::rectangle(image_, box, kGrey, 1);
+    cv::rectangle(image_, box, kChartGrid, 1);
     for (std::size_t i = 0; i < series.size(); ++i) {
       const int y = box.y + 14 + row * static_cast<int>(i);
       segment({box.x + 6, y - 4}, {box.x + 32, y - 4}, series[i]->colour, series[i]->dashed);

@@ -8,16 +8,10 @@
 
 namespace neopipe::apps {
 
-namespace {
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-}  // namespace
-
 NavVideo::NavVideo(std::string path, double window_side, int side_px)
     : path_(std::move(path)), side_(window_side), side_px_(side_px) {
-  const bool avi = ends_with(path_, ".avi");
-  if (!avi && !ends_with(path_, ".mp4") && !ends_with(path_, ".mkv")) {
+  const bool avi = path_.ends_with(".avi");
+  if (!avi && !path_.ends_with(".mp4") && !path_.ends_with(".mkv")) {
     throw std::runtime_error(fmt::format("--video {}: the video must be a .mp4, .avi or .mkv file", path_));
   }
   writer_ = pipeline::media::open_video_writer(path_, 30, cv::Size(side_px_, side_px_));

@@ -7,21 +7,20 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "apps/chart_colours.hpp"
 #include "pipeline/media/media.hpp"
 #include "rig/outcome.hpp"
 
 namespace neopipe::apps {
 namespace {
 
-const cv::Scalar kBlack(0, 0, 0);
-const cv::Scalar kGrey(200, 200, 200);
 const cv::Scalar kBlue(180, 90, 20);
 
 void text(cv::Mat& image, const std::string& s, cv::Point at, double scale = 0.45, int align = 0) {
   int baseline = 0;
   const cv::Size size = cv::getTextSize(s, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
   at.x -= align * size.width / 2;  // 0 left, 1 centred, 2 right
-  cv::putText(image, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kBlack, 1, cv::LINE_AA);
+  cv::putText(image, s, at, cv::FONT_HERSHEY_SIMPLEX, scale, kChartInk, 1, cv::LINE_AA);
 }
 
 }  // namespace
@@ -65,13 +64,13 @@ void write_reliability_diagram(const std::vector<ForecastOutcome>& journeys, con
   const auto clamp = [&](double v) { return std::clamp(v, kLow, 1.0); };
   for (int k = 0; k <= 10; ++k) {
     const double v = kLow + k * (1 - kLow) / 10;
-    cv::line(image, px(v, kLow), px(v, 1), kGrey, 1);
-    cv::line(image, px(kLow, v), px(1, v), kGrey, 1);
+    cv::line(image, px(v, kLow), px(v, 1), kChartGrid, 1);
+    cv::line(image, px(kLow, v), px(1, v), kChartGrid, 1);
     text(image, fmt::format("{:.2f}", v), px(v, kLow) + cv::Point(0, 22), 0.42, 1);
     text(image, fmt::format("{:.2f}", v), px(kLow, v) + cv::Point(-8, 5), 0.42, 2);
   }
-  cv::rectangle(image, plot, kBlack, 1);
-  cv::line(image, px(kLow, kLow), px(1, 1), kBlack, 1, cv::LINE_AA);
+  cv::rectangle(image, plot, kChartInk, 1);
+  cv::line(image, px(kLow, kLow), px(1, 1), kChartInk, 1, cv::LINE_AA);
   text(image, title, {plot.x + plot.width / 2, 24}, 0.55, 1);
   text(image, "planned reliability R (mean of the bin)", {plot.x + plot.width / 2, plot.y + plot.height + 50}, 0.5, 1);
   text(image, "share that reached the goal, 95% CI", {plot.x - 70, plot.y - 12}, 0.45, 0);

@@ -8,6 +8,7 @@
 #include "bench/memory.hpp"
 #include "bench/peers.hpp"
 #include "bench/synthetic.hpp"
+#include "bench/timing.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
@@ -58,10 +59,6 @@ class OpenCvCase {
   OpenCvChain chain_;
 };
 
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
 // Frames per second of `one(i)` called on frames i = 0, 1, 2, ... for at least min_seconds.
 template <class F>
 double time_loop(F&& one, double min_seconds) {
@@ -94,11 +91,6 @@ double time_neopipe(const std::string& name, const Frames& f, int threads, doubl
   } while (seconds_since(t0) < min_seconds);
   ex.finish();
   return static_cast<double>(i - start) / seconds_since(t0);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 // Runs `timed` (which returns frames/s); on the first repeat also notes how far the resident set

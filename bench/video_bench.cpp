@@ -9,6 +9,7 @@
 #include <streambuf>
 #include <variant>
 
+#include "bench/timing.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/io/blob_table_writer.hpp"
 #include "pipeline/kernel_registry.hpp"
@@ -20,15 +21,6 @@ namespace {
 
 namespace io = pipeline::io;
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 // Issue 3's reference for decode-only: the loop a user would write with OpenCV.
 double time_opencv_decode(const std::string& path, double min_seconds) {

@@ -39,6 +39,9 @@
 #include <set>
 #include <utility>
 
+#include "calib/cross2.hpp"
+#include "calib/homography.hpp"
+
 namespace neopipe::calib {
 namespace {
 
@@ -64,15 +67,6 @@ constexpr int kMaxBasisCoefficient = 3;
 constexpr int kResnapPasses = 3;
 
 constexpr std::array<Cell, 8> kNeighbours{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}}};
-
-double cross(const Vec2& a, const Vec2& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-Vec2 apply(const Eigen::Matrix3d& h, const Vec2& p) {
-  const Eigen::Vector3d q = h * Eigen::Vector3d(p.x(), p.y(), 1);
-  return q.head<2>() / q.z();
-}
 
 Vec2 as_vec(const Cell& c) {
   return {c.first, c.second};

@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "calib/cross2.hpp"
+
 namespace neopipe::calib {
 namespace {
 
@@ -42,10 +44,6 @@ const Eigen::Vector2d& coordinates(const Correspondence& c, Plane plane) {
 
 const char* plane_name(Plane plane) {
   return plane == Plane::image ? "in the image" : "in the world plane";
-}
-
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 /// Centroid and RMS distance from it: the scale the tolerances are relative to.

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "pipeline/frame_size.hpp"
 #include "pipeline/fusion.hpp"
 
 namespace neopipe::pipeline {
@@ -25,10 +26,6 @@ class NodeError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-std::string size_text(cv::Size s) {
-  return std::to_string(s.width) + "x" + std::to_string(s.height);
-}
 
 }  // namespace
 

@@ -4,14 +4,11 @@
 #include <string>
 #include <utility>
 
+#include "pipeline/frame_size.hpp"
 #include "pipeline/source_location.hpp"
 
 namespace neopipe::pipeline {
 namespace {
-
-std::string size_text(cv::Size s) {
-  return std::to_string(s.width) + "x" + std::to_string(s.height);
-}
 
 // A copy that the producer's next frame cannot overwrite: nodes write their images in place.
 Value deep_copy(const Value& v) {

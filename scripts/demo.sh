@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 # demo video (the demo_video target runs make_demo_video). The tests and benchmarks are left for
 # scripts/test.sh, which turns the tests back on in the same tree (so their packages, not installed
 # by `setup.sh --demo`, are not looked for here).
-./scripts/build.sh -DNEOPIPE_BUILD_TESTING=OFF --target neopipe --target demo_video
+./scripts/build.sh -DNEOPIPE_BUILD_TESTING=OFF -DNEOPIPE_UNITY_BUILD=ON --target neopipe --target demo_video
 out=build/demo
 ./build/apps/neopipe run "$out/marbles.avi" --out "$out/marbles_blobs.csv" --annotate "$out/marbles_annotated.mp4"
 echo

@@ -36,7 +36,7 @@ configure() {  # folder, sanitizers, more cmake options
 
 if [[ "$what" == address || "$what" == all ]]; then
   echo "== address,undefined: the whole suite (build-asan)"
-  configure build-asan address,undefined
+  configure build-asan address,undefined -DNEOPIPE_UNITY_BUILD=ON
   cmake --build build-asan -j "$jobs"
   export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1"
   export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$suppressions/ubsan.supp"
