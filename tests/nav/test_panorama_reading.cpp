@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
@@ -236,6 +237,37 @@ TEST(PanoramaReading, TheGraphGivesTheKernelsTableAndBlobsOfValueZeroOrLessAreIg
   negative.value = -3;
   EXPECT_TRUE(nav::sightings_from_blobs({negative}, {}).empty());
   EXPECT_THROW(reader.read(cv::Mat(320, 3600, CV_8UC1, cv::Scalar(0))), std::invalid_argument);
+}
+
+// What docs/panorama.md quotes: one frame's render and read, from the middle of the 400-marble world
+// (every marble within R_s) and of the 100-marble one. Printed, not held to a bound: the machine is
+// shared.
+TEST(PanoramaReading, RenderAndReadTimePerFrame) {
+  for (const int objects : {100, 400}) {
+    sim::WorldRequest q;
+    q.objects = objects;
+    q.seed = 7;
+    const sim::World w = sim::generate_world(q);
+    sim::PanoramicSensor sensor(w, {});
+    nav::PanoramaReader reader({2.5, 0});
+    const sim::Pose2 tool{220, 250, 30 * kDegree};
+    constexpr int kFrames = 200;
+    double render_ms = 0;
+    double read_ms = 0;
+    std::size_t seen = 0;
+    for (int i = 0; i < kFrames; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const cv::Mat ring = sensor.ring(tool).image;
+      const auto t1 = std::chrono::steady_clock::now();
+      seen = reader.read(ring).size();
+      const auto t2 = std::chrono::steady_clock::now();
+      render_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
+      read_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();
+    }
+    std::cout << "[ measure ] " << objects << " marbles, " << seen << " seen: render " << render_ms / kFrames
+              << " ms, read " << read_ms / kFrames << " ms per frame\n";
+    EXPECT_GT(seen, 0U);
+  }
 }
 
 TEST(PanoramaReading, AgreesWithTheSimulatorOnTheRingsGeometry) {
