@@ -129,6 +129,12 @@ int run_command(const RunArgs& a) {
     throw pl::GraphError({graph.origin(), 0, 0},
                          "the graph has no output of type blobs, so there is no blob table to write");
   }
+  if (graph.source_type() == pl::PortType::s16) {
+    // Files decode to 8-bit pixels; s16 frames (the panoramic sensor's ring) exist only in memory.
+    throw pl::GraphError({graph.origin(), 0, 0},
+                         "the graph's source takes s16 frames, which image and video files do not hold (use "
+                         "format gray or bgr)");
+  }
   const auto source = io::open_frame_source(a.inputs, run_source_format(graph));
 
   io::TableOptions table;

@@ -116,8 +116,9 @@ void add_sim_camera_options(CLI::App& cmd, SimCameraArgs& a) {
 }
 
 CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
-  CLI::App* sim =
-      parent.add_subcommand("sim", "Simulator: make worlds, render camera frames and videos, drive the arm");
+  CLI::App* sim = parent.add_subcommand(
+      "sim",
+      "Simulator: make worlds, render camera frames and videos, drive the arm, look around with the panoramic sensor");
   sim->require_subcommand(1);
 
   CLI::App* world =
@@ -208,6 +209,10 @@ CLI::App* add_sim_command(CLI::App& parent, SimArgs& a) {
   CLI::App* arm =
       sim->add_subcommand("arm", "Drive the SCARA arm through tool-frame moves; report commanded vs actual poses");
   add_sim_arm_options(*arm, a.arm);
+
+  CLI::App* panorama = sim->add_subcommand(
+      "panorama", "The panoramic sensor's ring image at a tool pose, and what a navigator reads from it");
+  add_sim_panorama_options(*panorama, a.panorama);
   return sim;
 }
 
@@ -216,6 +221,7 @@ int sim_command(const CLI::App& sim, const SimArgs& a) {
   if (sim.got_subcommand("render")) return sim_render_command(a.render);
   if (sim.got_subcommand("video")) return sim_video_command(a.video);
   if (sim.got_subcommand("arm")) return sim_arm_command(a.arm);
+  if (sim.got_subcommand("panorama")) return sim_panorama_command(a.panorama);
   return kExitUsage;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "apps/sim_arm_command.hpp"
+#include "apps/sim_panorama_command.hpp"
 
 namespace neopipe::apps {
 
@@ -82,6 +83,7 @@ struct SimArgs {
   SimRenderArgs render;
   SimVideoArgs video;
   SimArmArgs arm;
+  SimPanoramaArgs panorama;
 };
 
 /// Declares `sim` and its subcommands on `parent`; returns `sim`.

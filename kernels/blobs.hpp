@@ -57,6 +57,9 @@ struct Blob {
   /// Second central moments as cv::moments of the component's mask: sum (x - cx)^2,
   /// sum (x - cx)(y - cy), sum (y - cy)^2.
   double mu20 = 0, mu11 = 0, mu02 = 0;
+  /// The pixel value every pixel of the component shares, for components of equal values
+  /// (kernels/value_blobs.hpp); 0 for components of a threshold.
+  int value = 0;
 };
 
 Blob to_blob(const BlobMoments& m) noexcept;

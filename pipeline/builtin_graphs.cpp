@@ -30,4 +30,13 @@ GraphSpec marble_graph(int workspace_level) {
   return b.spec();
 }
 
+GraphSpec panorama_graph() {
+  GraphBuilder b("<built-in panorama graph>");
+  b.node("src", "source", "{format: s16}");
+  b.node("blobs", "value_blobs", "{connectivity: 8}");
+  b.connect("src", "blobs.in");
+  b.output("blobs");
+  return b.spec();
+}
+
 }  // namespace neopipe::pipeline

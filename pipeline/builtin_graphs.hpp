@@ -24,4 +24,9 @@ GraphSpec blob_graph(const BlobGraphOptions& options = {});
 /// so the rim pixels the cut leaves weigh almost nothing. examples/marbles.yaml is the same graph.
 GraphSpec marble_graph(int workspace_level = 60);
 
+/// The panoramic sensor's reading (qualnav.md §2): an s16 ring image of marble discs (value
+/// id + 1, background 0) -> 8-connected blobs of equal value. Its output is the blob table "blobs",
+/// each blob's value the disc's; a disc cut by the ring's seam is two blobs of one value.
+GraphSpec panorama_graph();
+
 }  // namespace neopipe::pipeline

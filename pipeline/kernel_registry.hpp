@@ -43,7 +43,7 @@ class KernelRegistry {
 };
 
 /// source, image, gray, lut, threshold, add, sub, absdiff, min, max, and, or, xor, lut2, conv3x3,
-/// bool3x3, convert, histogram, blobs.
+/// bool3x3, convert, histogram, blobs, value_blobs.
 KernelRegistry standard_kernels();
 
 }  // namespace neopipe::pipeline

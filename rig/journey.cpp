@@ -64,12 +64,17 @@ JourneyResult run_journey(const NavigationSystem& system, const Plan& plan, cons
   station_settings.camera.window_mm = request.window_mm;
   station_settings.realism = settings.realism;
   station_settings.seed = settings.seed;
+  if (request.sensor == Sensor::panoramic) {
+    sim::PanoramaSettings panorama;
+    panorama.bearing_noise_deg = request.bearing_noise_deg;
+    station_settings.panorama = panorama;
+  }
   const Vector2d start = world.objects.at(plan.start) + plan.start_offset;
   Station station(world, station_settings, sim::Pose2{start.x(), start.y(), 0});
 
   JourneyResult result;
   TruthWitness witness(station, plan, result.held);
-  Equipment equipment{station.onboard_camera(), station.arm()};
+  Equipment equipment{station.camera(), station.arm(), station.compass()};
   result.travel = system.travel(plan, equipment, witness);
   result.frames = result.travel.frames;
   result.arm = station.log();

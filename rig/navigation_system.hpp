@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "nav/common/arm.hpp"
+#include "nav/common/compass.hpp"
 #include "pipeline/io/frame_source.hpp"
 #include "rig/outcome.hpp"
 
@@ -27,11 +28,19 @@ class UnreachableGoal : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The camera a system travels with. Today every system the rig runs looks down through the onboard
-/// camera; a panoramic sensor is the next kind (qualnav.md §2).
+/// Which sensor a system travels with.
+enum class Sensor {
+  onboard_camera,  ///< looking down at a window beneath the tool (Park & Kender); gray8 frames
+  panoramic,       ///< the 360° ring of marble identities and a compass (qualnav.md §2); s16 frames
+};
+
+/// The camera a system travels with: the onboard camera, or the panoramic sensor, whose ring images
+/// the engine's panorama graph reads (nav/common/panorama_reading.hpp).
 struct CameraRequest {
-  int side_px = 256;      ///< square image
-  double window_mm = 50;  ///< side of the view window it shows
+  int side_px = 256;      ///< onboard: square image
+  double window_mm = 50;  ///< onboard: side of the view window it shows
+  Sensor sensor = Sensor::onboard_camera;
+  double bearing_noise_deg = 0;  ///< panoramic: sd of the Gaussian jitter of each disc's bearing
 };
 
 /// A journey as its system planned it: what the rig needs to place the arm and to judge. A system
@@ -85,6 +94,8 @@ struct Travel {
 struct Equipment {
   pipeline::io::FrameSource& camera;
   nav::Arm& arm;
+  /// The panoramic sensor's compass; null with the onboard camera. QRM must not read it.
+  nav::Compass* compass = nullptr;
 };
 
 class NavigationSystem {

@@ -17,6 +17,7 @@ std::uint64_t trial_seed(std::uint64_t seed, std::int64_t index);
 namespace streams {
 inline constexpr std::uint64_t arm = 0;                ///< a journey's arm errors
 inline constexpr std::uint64_t onboard_camera = 1;     ///< a journey's onboard camera noise
+inline constexpr std::uint64_t panorama = 2;           ///< a journey's panoramic sensor (bearings, compass)
 inline constexpr std::uint64_t gaussian_survey = 100;  ///< the Gaussian survey's errors
 inline constexpr std::uint64_t global_camera = 101;    ///< the global camera's noise (survey, calibration)
 }  // namespace streams

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "rig/seeds.hpp"
 #include "sim/arm/angles.hpp"
@@ -55,6 +56,19 @@ class Station::ArmAdapter final : public nav::Arm {
   ArmLog& log_;
 };
 
+// The compass reads the heading where the arm really is, with the sensor's error.
+class Station::CompassAdapter final : public nav::Compass {
+ public:
+  CompassAdapter(sim::PanoramicSensor& sensor, const sim::SimulatedArm& arm) : sensor_(sensor), arm_(arm) {}
+  nav::CompassReading read() override {
+    return {sensor_.compass_deg(arm_.pose()), sensor_.settings().compass_sigma_deg};
+  }
+
+ private:
+  sim::PanoramicSensor& sensor_;
+  const sim::SimulatedArm& arm_;
+};
+
 Station::Station(const sim::World& world, const StationSettings& settings, const sim::Pose2& start)
     : world_(world),
       settings_(settings),
@@ -62,6 +76,14 @@ Station::Station(const sim::World& world, const StationSettings& settings, const
            start),
       adapter_(std::make_unique<ArmAdapter>(arm_, log_)) {
   log_.track.emplace_back(start.x, start.y);
+  if (settings.panorama) {
+    sim::PanoramaSettings panorama = *settings.panorama;
+    panorama.seed = stream_seed(settings.seed, streams::panorama);
+    panorama_ = std::make_unique<sim::PanoramicSensor>(world_, panorama);
+    compass_ = std::make_unique<CompassAdapter>(*panorama_, arm_);
+    camera_ = sim::panoramic_camera_source(*panorama_, [this] { return arm_.pose(); });
+    return;
+  }
   sim::Rendering rendering = sim::rendering_for(settings.realism, sim::CameraKind::onboard, world.size);
   rendering.sensor.seed = stream_seed(settings.seed, streams::onboard_camera);
   const sim::OnboardCameraConfig camera = sim::onboard_config_for(rendering, world.marble_diameter, settings.camera);
@@ -75,8 +97,22 @@ nav::Arm& Station::arm() {
   return *adapter_;
 }
 
-pipeline::io::FrameSource& Station::onboard_camera() {
+pipeline::io::FrameSource& Station::camera() {
   return *camera_;
+}
+
+pipeline::io::FrameSource& Station::onboard_camera() {
+  if (panorama_) throw std::logic_error("this station carries the panoramic sensor, not the onboard camera");
+  return *camera_;
+}
+
+nav::Compass* Station::compass() {
+  return compass_.get();
+}
+
+bool Station::tool_keeps_clear() const {
+  const sim::Pose2& p = arm_.pose();
+  return sim::keeps_clear(world_, {p.x, p.y});
 }
 
 const sim::Pose2& Station::tool() const {

@@ -7,22 +7,21 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "nav/common/arm.hpp"
+#include "nav/common/compass.hpp"
 #include "pipeline/io/frame_source.hpp"
 #include "sim/arm/motion_model.hpp"
 #include "sim/arm/scara.hpp"
 #include "sim/arm/simulated_arm.hpp"
 #include "sim/cameras.hpp"
+#include "sim/panorama.hpp"
 #include "sim/pose2.hpp"
 #include "sim/realism.hpp"
 #include "sim/rendering.hpp"
 #include "sim/world.hpp"
-
-namespace neopipe::sim {
-class SimCameraSource;
-}
 
 namespace neopipe::rig {
 
@@ -45,6 +44,9 @@ struct StationSettings {
   sim::OnboardCameraConfig camera;           ///< image size and view window (its plane follows the rendering)
   sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera (its noise seeded per journey)
   std::uint64_t seed = 1;                    ///< this journey's arm errors and camera noise (two streams)
+  /// Set: the tool carries the panoramic sensor instead of the onboard camera (its seed is replaced
+  /// by this journey's panorama stream of `seed`).
+  std::optional<sim::PanoramaSettings> panorama;
 };
 
 /// What the arm did, as the truth has it.
@@ -73,7 +75,13 @@ class Station {
 
   /// What a navigator gets.
   nav::Arm& arm();
+  /// The camera the station carries: the onboard camera, or the panoramic sensor's ring.
+  pipeline::io::FrameSource& camera();
+  /// The same; throws std::logic_error if the station carries the panoramic sensor.
   pipeline::io::FrameSource& onboard_camera();
+  /// The panoramic sensor's compass, reading the tool's true heading with its error; null with the
+  /// onboard camera.
+  nav::Compass* compass();
 
   /// The truth.
   [[nodiscard]] const sim::Pose2& tool() const;
@@ -82,6 +90,9 @@ class Station {
   /// Where the world point `world` is from the tool, in the tool frame.
   [[nodiscard]] Eigen::Vector2d to_tool(const Eigen::Vector2d& world) const;
   [[nodiscard]] NearestObject nearest_object(const Eigen::Vector2d& world) const;
+  /// Whether the tool keeps sim::kMinClearanceMm from every marble's surface, as the robot carrying
+  /// the panoramic sensor must (qualnav.md §2).
+  [[nodiscard]] bool tool_keeps_clear() const;
   [[nodiscard]] const ArmLog& log() const { return log_; }
   [[nodiscard]] const sim::World& world() const { return world_; }
   [[nodiscard]] const StationSettings& settings() const { return settings_; }
@@ -91,13 +102,16 @@ class Station {
 
  private:
   class ArmAdapter;
+  class CompassAdapter;
 
   const sim::World& world_;
   StationSettings settings_;
   sim::SimulatedArm arm_;
   ArmLog log_;
   std::unique_ptr<ArmAdapter> adapter_;
-  std::unique_ptr<sim::SimCameraSource> camera_;
+  std::unique_ptr<sim::PanoramicSensor> panorama_;
+  std::unique_ptr<CompassAdapter> compass_;
+  std::unique_ptr<pipeline::io::FrameSource> camera_;
 };
 
 }  // namespace neopipe::rig

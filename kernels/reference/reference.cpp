@@ -191,4 +191,40 @@ std::vector<Blob> blobs(const cv::Mat& src, const BlobParams& params, const cv::
   return out;
 }
 
+std::vector<Blob> value_blobs(const cv::Mat& src, Connectivity connectivity) {
+  const auto value = [&](int x, int y) { return src.at<std::int16_t>(y, x); };
+  cv::Mat label(src.size(), CV_32SC1, cv::Scalar(0));
+  std::vector<Blob> out;
+  for (int y0 = 0; y0 < src.rows; ++y0) {
+    for (int x0 = 0; x0 < src.cols; ++x0) {
+      const std::int16_t v = value(x0, y0);
+      if (v == 0 || label.at<int>(y0, x0) != 0) continue;
+      const int id = static_cast<int>(out.size()) + 1;
+      BlobMoments m;
+      std::deque<std::pair<int, int>> queue{{x0, y0}};
+      label.at<int>(y0, x0) = id;
+      while (!queue.empty()) {
+        const auto [x, y] = queue.front();
+        queue.pop_front();
+        m.add_run(y, x, x + 1, 0, 0);
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            if ((dx == 0 && dy == 0) || (connectivity == Connectivity::four && dx != 0 && dy != 0)) continue;
+            const int nx = x + dx;
+            const int ny = y + dy;
+            if (nx < 0 || ny < 0 || nx >= src.cols || ny >= src.rows) continue;
+            if (value(nx, ny) != v || label.at<int>(ny, nx) != 0) continue;
+            label.at<int>(ny, nx) = id;
+            queue.emplace_back(nx, ny);
+          }
+        }
+      }
+      Blob b = to_blob(m);
+      b.value = v;
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 }  // namespace neopipe::kernels::reference

@@ -14,6 +14,7 @@
 #include "kernels/histogram.hpp"
 #include "kernels/lut.hpp"
 #include "kernels/lut2.hpp"
+#include "kernels/value_blobs.hpp"
 
 namespace neopipe::kernels::reference {
 
@@ -31,5 +32,9 @@ cv::Mat convert_s16(const cv::Mat& src, const ConvertS16& c);
 Histogram histogram(const cv::Mat& src);
 /// Flood fill from each unlabelled foreground pixel in raster order; stats summed pixel by pixel.
 std::vector<Blob> blobs(const cv::Mat& src, const BlobParams& params, const cv::Mat& weights = cv::Mat());
+/// Flood fill over equal non-zero values of a CV_16SC1 image, from each unlabelled pixel in raster
+/// order. The exact sums go through to_blob, as in the fast path, so the two agree bit for bit
+/// when they find the same components.
+std::vector<Blob> value_blobs(const cv::Mat& src, Connectivity connectivity);
 
 }  // namespace neopipe::kernels::reference

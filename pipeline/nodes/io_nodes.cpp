@@ -45,8 +45,14 @@ PortType format_param(ParamReader& p, const char* fallback) {
 }  // namespace
 
 void register_io_nodes(KernelRegistry& r) {
-  r.add({kSourceKernel, "the frame being processed; params: format (bgr | gray, default bgr)",
-         [](NodeContext& c) { return std::make_unique<SourceNode>(format_param(c.params, "bgr")); }});
+  r.add(
+      {kSourceKernel, "the frame being processed; params: format (bgr | gray | s16, default bgr)", [](NodeContext& c) {
+         // s16 frames (a panoramic sensor's ring image of marble ids) come from memory, never
+         // from an image file, so only the source offers them.
+         const std::string format = c.params.get_choice("format", "bgr", {"bgr", "gray", "s16"});
+         const PortType type = format == "bgr" ? PortType::bgr8 : format == "gray" ? PortType::gray8 : PortType::s16;
+         return std::make_unique<SourceNode>(type);
+       }});
   r.add({"image", "a constant image from a file; params: path, format (gray | bgr, default gray)",
          [](NodeContext& c) -> std::unique_ptr<Node> {
            const auto path = c.params.get_optional_string("path");

@@ -8,6 +8,7 @@
 #include "kernels/blobs.hpp"
 #include "kernels/histogram.hpp"
 #include "kernels/threshold.hpp"
+#include "kernels/value_blobs.hpp"
 #include "pipeline/nodes/nodes.hpp"
 
 namespace neopipe::pipeline::nodes {
@@ -61,6 +62,28 @@ class BlobsNode final : public Node {
   bool otsu_;
 };
 
+// The blob kernel's s16 mode: components of equal non-zero value. Whole frames only: the ring
+// images it is made for (320 rows) are below the height the gray blobs node would cut into stripes,
+// and other frames in flight keep the executor's threads busy.
+class ValueBlobsNode final : public Node {
+ public:
+  explicit ValueBlobsNode(kernels::Connectivity connectivity)
+      : Node({{"in", PortType::s16}}, {{"out", PortType::blobs}}, Footprint::frame, FrameOrder::any),
+        connectivity_(connectivity) {}
+  void begin_frame(NodeIO& io) override {
+    io.out<BlobList>(0) = kernels::extract_value_blobs(io.image(0), connectivity_);
+  }
+
+ private:
+  kernels::Connectivity connectivity_;
+};
+
+kernels::Connectivity connectivity_param(NodeContext& c) {
+  const int conn = c.params.get_int("connectivity", 8, 4, 8);
+  if (conn != 4 && conn != 8) c.params.fail("connectivity", "must be 4 or 8");
+  return conn == 4 ? kernels::Connectivity::four : kernels::Connectivity::eight;
+}
+
 }  // namespace
 
 void register_symbolic_nodes(KernelRegistry& r) {
@@ -73,11 +96,14 @@ void register_symbolic_nodes(KernelRegistry& r) {
            kernels::BlobParams p;
            const bool otsu = c.params.get_string("threshold", "0") == "otsu";
            p.threshold = otsu ? 0 : c.params.get_int("threshold", 0, -1, 255);
-           const int conn = c.params.get_int("connectivity", 8, 4, 8);
-           if (conn != 4 && conn != 8) c.params.fail("connectivity", "must be 4 or 8");
-           p.connectivity = conn == 4 ? kernels::Connectivity::four : kernels::Connectivity::eight;
+           p.connectivity = connectivity_param(c);
            return std::make_unique<BlobsNode>(p, otsu);
          }});
+  r.add({"value_blobs",
+         "the blob kernel's s16 mode: connected components of equal non-zero value (0 is background; touching "
+         "regions of different values stay apart), each with its value, area, box, centroid and central moments; "
+         "params: connectivity (4 | 8, default 8)",
+         [](NodeContext& c) { return std::make_unique<ValueBlobsNode>(connectivity_param(c)); }});
 }
 
 }  // namespace neopipe::pipeline::nodes

@@ -200,7 +200,7 @@ inline std::string describe(const Blob& b) {
   s.precision(17);
   s << "{area " << b.area << ", box (" << b.x0 << ", " << b.y0 << ") " << b.width << "x" << b.height << ", c (" << b.cx
     << ", " << b.cy << "), wc (" << b.wcx << ", " << b.wcy << "), mu20 " << b.mu20 << ", mu11 " << b.mu11 << ", mu02 "
-    << b.mu02 << "}";
+    << b.mu02 << ", value " << b.value << "}";
   return s.str();
 }
 
@@ -224,7 +224,7 @@ inline ::testing::AssertionResult identical_blobs(const std::vector<Blob>& a, co
     const auto& q = e[i];
     if (p.area != q.area || p.x0 != q.x0 || p.y0 != q.y0 || p.width != q.width || p.height != q.height ||
         !same_bits(p.cx, q.cx) || !same_bits(p.cy, q.cy) || !same_bits(p.wcx, q.wcx) || !same_bits(p.wcy, q.wcy) ||
-        !same_bits(p.mu20, q.mu20) || !same_bits(p.mu11, q.mu11) || !same_bits(p.mu02, q.mu02)) {
+        !same_bits(p.mu20, q.mu20) || !same_bits(p.mu11, q.mu11) || !same_bits(p.mu02, q.mu02) || p.value != q.value) {
       return ::testing::AssertionFailure() << "blob " << i << ": " << describe(p) << " vs " << describe(q);
     }
   }

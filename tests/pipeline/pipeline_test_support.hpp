@@ -62,6 +62,7 @@ inline void expect_same_blobs(const BlobList& a, const BlobList& b, const std::s
     EXPECT_EQ(a[i].mu20, b[i].mu20);
     EXPECT_EQ(a[i].mu11, b[i].mu11);
     EXPECT_EQ(a[i].mu02, b[i].mu02);
+    EXPECT_EQ(a[i].value, b[i].value);
   }
 }
 

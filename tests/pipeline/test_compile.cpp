@@ -147,7 +147,7 @@ TEST(CompileErrors, UnknownKernelAtTheKernelName) {
                 /* 6 */ "outputs: edges",
             })),
             "spec.yaml:4:13: unknown kernel 'sobel' (known: absdiff, add, and, blobs, bool3x3, conv3x3, convert, "
-            "gray, histogram, image, lut, lut2, max, min, or, source, sub, threshold, xor)");
+            "gray, histogram, image, lut, lut2, max, min, or, source, sub, threshold, value_blobs, xor)");
 }
 
 TEST(CompileErrors, UnknownParameterNamesTheKnownOnes) {

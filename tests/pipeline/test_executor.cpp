@@ -39,6 +39,7 @@
 #include "kernels/lut2.hpp"
 #include "kernels/reference/reference.hpp"
 #include "kernels/threshold.hpp"
+#include "kernels/value_blobs.hpp"
 #include "pipeline/builtin_graphs.hpp"
 #include "pipeline/compiled_graph.hpp"
 #include "pipeline/executor.hpp"
@@ -972,4 +973,47 @@ TEST(InlineRunner, RefusesFramesOfTheWrongTypeOrSize) {
   runner.run(cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(0)));
   EXPECT_THROW(runner.run(cv::Mat(9, 8, CV_8UC3, cv::Scalar::all(0))), std::invalid_argument);
   EXPECT_EQ(runner.frames(), 1);
+}
+
+// The built-in panorama graph (the panoramic sensor's reader): its value_blobs node's table equals
+// the kernel's on each frame, whatever the thread count and frames in flight, and one at a time.
+namespace {
+
+std::vector<cv::Mat> disc_label_frames(int count, cv::Size size, std::uint64_t seed) {
+  cv::RNG rng(seed);
+  std::vector<cv::Mat> frames;
+  for (int f = 0; f < count; ++f) {
+    cv::Mat m(size, CV_16SC1, cv::Scalar(0));
+    for (int i = 0; i < 60; ++i) {
+      cv::circle(m, {rng.uniform(0, size.width), size.height / 2}, rng.uniform(1, size.height / 2),
+                 cv::Scalar(rng.uniform(1, 500)), cv::FILLED, cv::LINE_8);
+    }
+    frames.push_back(m);
+  }
+  return frames;
+}
+
+}  // namespace
+
+TEST(PanoramaGraph, ValueBlobsNodeEqualsTheKernelForEveryThreadCount) {
+  const auto frames = disc_label_frames(5, {3600, 320}, 20);
+  const auto reference =
+      expect_deterministic([] { return pl::compile(pl::panorama_graph(), pl::standard_kernels()); }, frames);
+  ASSERT_EQ(reference.size(), frames.size());
+  for (size_t f = 0; f < frames.size(); ++f) {
+    const auto& table = std::get<pl::BlobList>(reference[f].outputs.at(0));
+    expect_same_blobs(table, kn::extract_value_blobs(frames[f], kn::Connectivity::eight), "frame " + std::to_string(f));
+    EXPECT_GT(table.size(), 10U);
+  }
+}
+
+TEST(PanoramaGraph, TakesS16FramesOnly) {
+  pl::InlineRunner runner(pl::compile(pl::panorama_graph(), pl::standard_kernels()));
+  EXPECT_EQ(runner.graph().source_type(), pl::PortType::s16);
+  EXPECT_THROW(runner.run(cv::Mat(8, 8, CV_8UC1, cv::Scalar(0))), std::invalid_argument);
+  const cv::Mat one = (cv::Mat_<std::int16_t>(2, 3) << 0, 4, 4, 0, 0, 9);
+  const auto& table = std::get<pl::BlobList>(runner.run(one).at(0));
+  ASSERT_EQ(table.size(), 2U);
+  EXPECT_EQ(table[0].value, 4);
+  EXPECT_EQ(table[1].value, 9);
 }
