@@ -1,9 +1,13 @@
 #include "nav/qrm/composition.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
+#include <numbers>
+#include <random>
 #include <sstream>
 
+#include "nav/qrm/edc.hpp"
 #include "nav/qrm/region_constraints.hpp"
 
 namespace neopipe::nav::qrm {
@@ -220,6 +224,45 @@ CompositionEntries parse_composition_table(const std::string& text, const std::s
          "' (corrupt or edited table)");
   if (next()) fail("unexpected text after the checksum line");
   return entries;
+}
+
+SamplingReport sample_composition(const CompositionTable& table, std::int64_t samples, std::uint64_t seed,
+                                  const std::function<void(std::int64_t)>& progress) {
+  SamplingReport report;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> box(-kCompositionHalfWidth, kCompositionHalfWidth);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const Eigen::Vector2d a{0, 0};
+  const Eigen::Vector2d b{0, 1};
+  const auto near = [&](const Eigen::Vector2d& centre) {
+    const double r = std::pow(10.0, -2 + 3 * unit(rng));
+    const double t = 2 * std::numbers::pi * unit(rng);
+    return Eigen::Vector2d(centre + r * Eigen::Vector2d(std::cos(t), std::sin(t)));
+  };
+  std::vector<bool> seen(static_cast<std::size_t>(kStateCount * kStateCount * kStateCount), false);
+  for (std::int64_t n = 0; n < samples; ++n) {
+    const Eigen::Vector2d c = n % 2 == 0 ? Eigen::Vector2d(box(rng), box(rng)) : near(n % 4 == 1 ? a : b);
+    const Eigen::Vector2d d = n % 3 == 0 ? Eigen::Vector2d(box(rng), box(rng)) : near(n % 3 == 1 ? c : b);
+    ++report.samples;
+    if (progress && (n & 0xFFFFF) == 0) progress(n);
+    const State s1 = classify(a, b, c);
+    const State s2 = classify(b, c, d);
+    const State s3 = classify(a, b, d);
+    if (s1 == 0 || s2 == 0 || s3 == 0) {
+      ++report.degenerate;
+      continue;
+    }
+    if (!table(s1, s2).contains(s3)) {
+      if (report.outside++ == 0) report.first_outside = {s1, s2, s3};
+      continue;
+    }
+    const auto index = static_cast<std::size_t>(((s1 - 1) * kStateCount + (s2 - 1)) * kStateCount + (s3 - 1));
+    if (!seen[index]) {
+      seen[index] = true;
+      ++report.triples_seen;
+    }
+  }
+  return report;
 }
 
 CompositionEntries load_composition_table(const std::string& path) {

@@ -83,6 +83,22 @@ CompositionEntries parse_composition_table(const std::string& text, const std::s
 /// Reads and parses a table file.
 CompositionEntries load_composition_table(const std::string& path);
 
+/// What random configurations say of a table (spec §4's sampling check).
+struct SamplingReport {
+  std::int64_t samples = 0;
+  std::int64_t degenerate = 0;           ///< skipped: some state on a boundary
+  std::int64_t outside = 0;              ///< (AB:C, BC:D, AB:D) not in the table: the table is wrong
+  int triples_seen = 0;                  ///< distinct feasible triples met
+  std::array<State, 3> first_outside{};  ///< the first one outside, if any
+};
+
+/// Classifies `samples` random configurations A = (0,0), B = (0,1), C, D and counts the triples the
+/// table lacks. C and D are drawn uniform in [-8, 8]^2 or at a log-uniform distance (0.01..10) from
+/// A, B or C, so that the thin regions near the segment are met too. Deterministic per seed;
+/// `progress(done)` every 2^20 samples.
+SamplingReport sample_composition(const CompositionTable& table, std::int64_t samples, std::uint64_t seed,
+                                  const std::function<void(std::int64_t)>& progress = {});
+
 /// FNV-1a, 64 bits: the table file's checksum.
 std::uint64_t fnv1a64(const std::string& text);
 

@@ -160,6 +160,17 @@ TEST(QrmComposition, RandomConfigurationsAreNeverOutsideTheTable) {
   }
   // Most of the table is reached (the rest are thin regions), so the check is not vacuous.
   EXPECT_GT(seen.size(), 2000U);
+  // The library's own sampler (behind `neopipe qrm tables --sample N`) agrees.
+  const SamplingReport report = sample_composition(table(), 500000, 9);
+  EXPECT_EQ(report.outside, 0);
+  EXPECT_EQ(report.samples, 500000);
+  EXPECT_GT(report.triples_seen, 1900);
+  // ... and finds what a table lacks: comp(1, 1) without 19.
+  CompositionEntries broken = table().entries();
+  broken[0][0] = StateSet{1, 5, 11};
+  const SamplingReport bad = sample_composition(CompositionTable(broken), 500000, 9);
+  EXPECT_GT(bad.outside, 0);
+  EXPECT_EQ(bad.first_outside, (std::array<State, 3>{1, 1, 19}));
 }
 
 TEST(QrmComposition, TheFileFormatRoundTrips) {
