@@ -31,6 +31,7 @@ std::vector<Eigen::Vector2d> landmarks(std::mt19937_64& rng, int n) {
   std::uniform_real_distribution<double> u(0, 500);
   for (;;) {
     std::vector<Eigen::Vector2d> p;
+    p.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) p.emplace_back(u(rng), u(rng));
     bool ok = true;
     for (int i = 0; i < n && ok; ++i) {

@@ -256,9 +256,9 @@ SamplingReport sample_composition(const CompositionTable& table, std::int64_t sa
       if (report.outside++ == 0) report.first_outside = {s1, s2, s3};
       continue;
     }
-    const auto index = static_cast<std::size_t>(((s1 - 1) * kStateCount + (s2 - 1)) * kStateCount + (s3 - 1));
-    if (!seen[index]) {
-      seen[index] = true;
+    const int index = ((s1 - 1) * kStateCount + (s2 - 1)) * kStateCount + (s3 - 1);
+    if (!seen[static_cast<std::size_t>(index)]) {
+      seen[static_cast<std::size_t>(index)] = true;
       ++report.triples_seen;
     }
   }

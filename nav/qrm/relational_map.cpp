@@ -138,7 +138,8 @@ FuseOutcome RelationalMap::fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateS
     consistent = process(t);
   }
   if (!consistent) {
-    for (auto it = journal_.rbegin(); it != journal_.rend(); ++it) masks_[it->first] = it->second;
+    // Newest first, so a relation changed twice ends at its value before the measurement.
+    for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].first] = journal_[n].second;
     journal_.clear();
     queue_.clear();
     ++inconsistencies_;
