@@ -12,6 +12,7 @@
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/qrm_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
 #include "neopipe_version.hpp"
@@ -60,6 +61,8 @@ int run_main(int argc, char** argv) {
   CLI::App* map_stats = add_map_stats_command(map, map_stats_args);
   NavArgs nav_args;
   CLI::App* nav = add_nav_command(app, nav_args);
+  QrmArgs qrm_args;
+  CLI::App* qrm = add_qrm_command(app, qrm_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -67,7 +70,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map, nav; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav, qrm; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -93,6 +96,10 @@ int run_main(int argc, char** argv) {
   if (map_stats->parsed()) return guarded("map stats", [&] { return map_stats_command(map_stats_args); });
   if (map->parsed()) return guarded("map", [&] { return map_command(map_args); });
   if (nav->parsed()) return guarded("nav", [&] { return nav_command(nav_args); });
+  if (qrm->parsed()) {
+    const auto subs = qrm->get_subcommands();
+    return guarded("qrm " + subs.front()->get_name(), [&] { return qrm_command(*qrm, qrm_args); });
+  }
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();
     return guarded("sim " + subs.front()->get_name(), [&] { return sim_command(*sim, sim_args); });

@@ -1,7 +1,7 @@
 // Includes every header the package installed (installed_headers.hpp, listed by CMakeLists.txt) and
 // calls into each library, so that a header that needs an uninstalled one, or a library whose
 // dependencies the package does not carry, fails to build here: building and linking is the test.
-//   all_headers [world FILE | calibration FILE | map TEXT | route - | trials -]
+//   all_headers [world FILE | calibration FILE | map TEXT | route - | trials - | qrm -]
 
 #include <cstdio>
 #include <string>
@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       std::printf("%s\n", neopipe::calib::model_name(neopipe::calib::load_calibration(arg).model).c_str());
     if (what == "map") std::printf("%zu entries\n", neopipe::nav::parse_custom_map(arg).entries.size());
     if (what == "route") std::printf("%s", neopipe::nav::mapmaker::route_table({}).c_str());
+    if (what == "qrm") std::printf("%d triples\n", neopipe::nav::qrm::composition_table().feasible_triples());
     if (what == "trials") std::printf("%lld\n", static_cast<long long>(neopipe::rig::compare_paired({}, {}).journeys));
   }
   std::printf("neopipe %s: every installed header compiles\n", neopipe::version);

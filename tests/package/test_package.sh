@@ -61,6 +61,9 @@ for flag in -march=native -Wshadow HWY_COMPILE_ONLY_STATIC; do
   ! grep -q -- "$flag" "$work/consumer/compile_commands.json" || fail "$flag leaked into the consumer's compile lines"
 done
 "$work/consumer/all_headers" > /dev/null || fail "all_headers failed"
+# The composition table is compiled into the installed qrm library: no data file to find.
+[ "$("$work/consumer/all_headers" qrm -)" = "$(printf '2214 triples\nneopipe %s: every installed header compiles' "$version")" ] ||
+  fail "the installed qrm library does not give its composition table"
 
 # Its blobs: three discs of radius 12 at (60,50), (200,120), (120,190), in raster order of their first
 # pixel, the same from the owned cv::Mat (frame 0) and the strided buffer (frame 1).

@@ -1,0 +1,173 @@
+#include "nav/qrm/relational_map.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "nav/qrm/operators.hpp"
+
+namespace neopipe::nav::qrm {
+
+RelationalMap::RelationalMap(const CompositionTable& table) : table_(&table) {}
+
+void RelationalMap::add_landmark(LandmarkId id) {
+  if (index_.contains(id)) throw std::invalid_argument("landmark " + std::to_string(id) + " is already in the map");
+  const int k = static_cast<int>(ids_.size());
+  ids_.push_back(id);
+  index_.emplace(id, k);
+  if (ids_.size() > capacity_) {
+    capacity_ = std::max<std::size_t>(8, 2 * capacity_);
+    rebuild_slots();
+  }
+  // The new landmark is the largest index, so its triples are {i < j < k}.
+  const std::size_t n = capacity_;
+  for (int i = 0; i < k; ++i) {
+    for (int j = i + 1; j < k; ++j) {
+      triple_base_[(static_cast<std::size_t>(i) * n + j) * n + k] = static_cast<std::uint32_t>(masks_.size());
+      masks_.insert(masks_.end(), 3, StateSet::kAllMask);
+    }
+  }
+}
+
+void RelationalMap::rebuild_slots() {
+  // Re-indexes the existing triples in a larger cube; their masks stay where they are.
+  const std::size_t old_n = triple_base_.empty() ? 0 : capacity_ / 2;
+  std::vector<std::uint32_t> base(capacity_ * capacity_ * capacity_, 0);
+  const std::size_t existing = ids_.size() - 1;
+  for (std::size_t i = 0; i < existing; ++i) {
+    for (std::size_t j = i + 1; j < existing; ++j) {
+      for (std::size_t k = j + 1; k < existing; ++k) {
+        base[(i * capacity_ + j) * capacity_ + k] = triple_base_[(i * old_n + j) * old_n + k];
+      }
+    }
+  }
+  triple_base_ = std::move(base);
+}
+
+int RelationalMap::index_of(LandmarkId id) const {
+  const auto it = index_.find(id);
+  if (it == index_.end()) throw std::invalid_argument("landmark " + std::to_string(id) + " is not in the map");
+  return it->second;
+}
+
+RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
+  // Stored for x < y < z: xy:z (0), yz:x (1), zx:y (2). qp:r = I(pq:r), so first make p < q.
+  bool inverse = p > q;
+  const int i = std::min(p, q);
+  const int j = std::max(p, q);
+  int x = i;
+  int y = j;
+  int z = r;
+  std::uint32_t which = 0;  // j < r: ij:r = xy:z
+  if (r < i) {              // r < i < j: ij:r = yz:x
+    x = r;
+    y = i;
+    z = j;
+    which = 1;
+  } else if (r < j) {  // i < r < j: ij:r = xz:y = I(zx:y)
+    y = r;
+    z = j;
+    which = 2;
+    inverse = !inverse;
+  }
+  const std::size_t n = capacity_;
+  return {triple_base_[(static_cast<std::size_t>(x) * n + y) * n + z] + which, inverse};
+}
+
+StateSet RelationalMap::read(int p, int q, int r) const {
+  const Slot s = slot(p, q, r);
+  const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
+  return s.inverse ? inverse(stored) : stored;
+}
+
+StateSet RelationalMap::relation(LandmarkId p, LandmarkId q, LandmarkId r) const {
+  const int a = index_of(p);
+  const int b = index_of(q);
+  const int c = index_of(r);
+  if (a == b || b == c || a == c) throw std::invalid_argument("a relation needs three distinct landmarks");
+  return read(a, b, c);
+}
+
+bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
+  if (states.is_all()) return true;
+  const Slot s = slot(a, b, c);
+  const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
+  const StateSet current = s.inverse ? inverse(stored) : stored;
+  const StateSet next = current & states;
+  if (next == current) return true;
+  if (next.empty()) return false;
+  journal_.emplace_back(s.mask_index, stored.mask());
+  masks_[s.mask_index] = (s.inverse ? inverse(next) : next).mask();
+  queue_.push_back({a, b, c});
+  return true;
+}
+
+bool RelationalMap::process(const Triple& t) {
+  const auto [a, b, c] = t;
+  const StateSet abc = read(a, b, c);
+  if (!restrict(b, c, a, left_shift(abc)) || !restrict(c, a, b, right_shift(abc))) return false;
+  const std::array<Triple, 6> orders{{{a, b, c}, {b, c, a}, {c, a, b}, {b, a, c}, {a, c, b}, {c, b, a}}};
+  const int n = static_cast<int>(ids_.size());
+  const CompositionTable& comp = *table_;
+  for (const auto& [p, q, r] : orders) {
+    const StateSet pqr = read(p, q, r);
+    if (pqr.is_all()) continue;  // comp(all, s) = comp(s, all) = all: nothing to learn
+    for (int d = 0; d < n; ++d) {
+      if (d == p || d == q || d == r) continue;
+      // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
+      const StateSet qrd = read(q, r, d);
+      if (!qrd.is_all() && !restrict(p, q, d, comp(pqr, qrd))) return false;
+      // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
+      const StateSet dpq = read(d, p, q);
+      if (!dpq.is_all() && !restrict(d, p, r, comp(dpq, pqr))) return false;
+    }
+  }
+  return true;
+}
+
+FuseOutcome RelationalMap::fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateSet states) {
+  const int i = index_of(a);
+  const int j = index_of(b);
+  const int k = index_of(c);
+  if (i == j || j == k || i == k) throw std::invalid_argument("a measurement needs three distinct landmarks");
+  journal_.clear();
+  queue_.clear();
+  bool consistent = restrict(i, j, k, states);
+  while (consistent && !queue_.empty()) {
+    const Triple t = queue_.back();
+    queue_.pop_back();
+    consistent = process(t);
+  }
+  if (!consistent) {
+    // Newest first, so a relation changed twice ends at its value before the measurement.
+    for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].first] = journal_[n].second;
+    journal_.clear();
+    queue_.clear();
+    ++inconsistencies_;
+    return FuseOutcome::inconsistent;
+  }
+  return journal_.empty() ? FuseOutcome::unchanged : FuseOutcome::refined;
+}
+
+bool RelationalMap::same_relations(const RelationalMap& other) const {
+  if (ids_.size() != other.ids_.size()) return false;
+  for (const LandmarkId id : ids_) {
+    if (!other.has_landmark(id)) return false;
+  }
+  const std::size_t n = ids_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const LandmarkId p = ids_[i];
+        const LandmarkId q = ids_[j];
+        const LandmarkId r = ids_[k];
+        if (relation(p, q, r) != other.relation(p, q, r) || relation(q, r, p) != other.relation(q, r, p) ||
+            relation(r, p, q) != other.relation(r, p, q)) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace neopipe::nav::qrm

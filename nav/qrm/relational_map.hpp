@@ -1,0 +1,83 @@
+#pragma once
+// The qualitative relational map (spec qrm.md §7): a 3-uniform hypergraph over landmark ids whose
+// edge {i < j < k} stores the states still possible for ij:k, jk:i and ki:j; every other order is
+// read through I. Measurements are fused by restriction and propagated (operators and composition)
+// to the greatest fixpoint; a measurement that empties a relation is rolled back whole.
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <unordered_map>
+#include <vector>
+
+#include "nav/qrm/composition.hpp"
+#include "nav/qrm/state_set.hpp"
+
+namespace neopipe::nav::qrm {
+
+using LandmarkId = std::uint32_t;
+
+/// What fusing a measurement did.
+enum class FuseOutcome {
+  unchanged,     ///< the map already implied it
+  refined,       ///< some relation lost states
+  inconsistent,  ///< it contradicted the map: rolled back, the map is as before
+};
+
+class RelationalMap {
+ public:
+  /// `table` must outlive the map.
+  explicit RelationalMap(const CompositionTable& table = composition_table());
+
+  /// Adds a landmark related to every pair of the others by all 20 states (nothing to propagate:
+  /// comp with "all" is "all"). Throws std::invalid_argument if `id` is already there.
+  void add_landmark(LandmarkId id);
+  bool has_landmark(LandmarkId id) const { return index_.contains(id); }
+  /// In the order they were added.
+  const std::vector<LandmarkId>& landmarks() const { return ids_; }
+  std::size_t size() const { return ids_.size(); }
+
+  /// pq:r, for three distinct landmarks of the map.
+  StateSet relation(LandmarkId p, LandmarkId q, LandmarkId r) const;
+
+  /// Restricts ab:c to `states` and propagates to the fixpoint (spec §7, LIFO). On an inconsistency
+  /// every change of this measurement is undone and counted.
+  FuseOutcome fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateSet states);
+
+  /// Measurements rolled back so far.
+  int inconsistencies() const { return inconsistencies_; }
+
+  /// Same landmarks and the same states in every relation (whatever order the landmarks came in).
+  bool same_relations(const RelationalMap& other) const;
+
+ private:
+  // A stored mask and whether reading it as the asked order needs I.
+  struct Slot {
+    std::uint32_t mask_index;
+    bool inverse;
+  };
+  using Triple = std::array<int, 3>;
+
+  int index_of(LandmarkId id) const;
+  Slot slot(int p, int q, int r) const;
+  StateSet read(int p, int q, int r) const;
+  /// false when the restriction empties the relation.
+  bool restrict(int a, int b, int c, StateSet states);
+  bool process(const Triple& t);
+  void rebuild_slots();
+
+  const CompositionTable* table_;
+  std::vector<LandmarkId> ids_;
+  std::unordered_map<LandmarkId, int> index_;
+  /// Three masks per unordered triple {i < j < k}: ij:k, jk:i, ki:j.
+  std::vector<StateSet::Mask> masks_;
+  /// First mask of each unordered triple, by the triple's sorted indices (a dense cube, i < j < k).
+  std::vector<std::uint32_t> triple_base_;
+  std::size_t capacity_ = 0;  ///< side of the cube
+  int inconsistencies_ = 0;
+  // Scratch of one fuse, kept to reuse its memory.
+  std::vector<std::pair<std::uint32_t, StateSet::Mask>> journal_;
+  std::vector<Triple> queue_;
+};
+
+}  // namespace neopipe::nav::qrm

@@ -1,0 +1,47 @@
+#pragma once
+// Random scenes for the map tests: landmarks in a square, a camera somewhere, and what it measures
+// of a triple from exact geometry (spec qrm.md §6), with its zero direction turned at random.
+
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "nav/qrm/edc.hpp"
+#include "nav/qrm/measurement.hpp"
+
+namespace neopipe::nav::qrm::scenes {
+
+/// `n` points uniform in [0, 100]^2 with no degenerate triple in any order (redrawn until so).
+inline std::vector<Eigen::Vector2d> random_landmarks(std::mt19937_64& rng, int n) {
+  std::uniform_real_distribution<double> u(0, 100);
+  for (;;) {
+    std::vector<Eigen::Vector2d> p;
+    p.reserve(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) p.emplace_back(u(rng), u(rng));
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) {
+      for (int j = 0; j < n && ok; ++j) {
+        for (int k = 0; k < n && ok; ++k) {
+          if (i != j && j != k && i != k) ok = classify(p[i], p[j], p[k]) != 0;
+        }
+      }
+    }
+    if (ok) return p;
+  }
+}
+
+/// The sightings of a, b, c from `camera` with the camera's zero direction at `zero` (radians).
+inline std::array<Sighting, 3> sightings(const Eigen::Vector2d& camera, double zero, const Eigen::Vector2d& a,
+                                         const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  std::array<Sighting, 3> s;
+  const std::array<Eigen::Vector2d, 3> p{a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d v = p[i] - camera;
+    s[i] = {std::atan2(v.y(), v.x()) - zero, v.norm()};
+  }
+  return s;
+}
+
+}  // namespace neopipe::nav::qrm::scenes
