@@ -15,10 +15,6 @@ namespace {
 
 constexpr const char* kMagic = "neopipe-qrm-composition";
 
-void check_state(State s) {
-  if (s < 1 || s > kStateCount) throw std::out_of_range("EDC state " + std::to_string(s) + " is not in 1..20");
-}
-
 std::string entry_line(State s1, State s2, StateSet states) {
   std::string line = std::to_string(s1) + ' ' + std::to_string(s2) + ' ';
   bool first = true;

@@ -45,10 +45,6 @@ std::array<Signs, kStateCount + 1> make_signs() {
   return signs;
 }
 
-void check_state(State s) {
-  if (s < 1 || s > kStateCount) throw std::out_of_range("EDC state " + std::to_string(s) + " is not in 1..20");
-}
-
 // The list of spec §2, one line per state: the neighbours as ranges.
 const std::array<StateSet, kStateCount + 1>& adjacency() {
   static const std::array<StateSet, kStateCount + 1> table{

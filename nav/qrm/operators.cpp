@@ -17,10 +17,6 @@ constexpr std::array<StateSet, kStateCount + 1> kRight{
     StateSet{12, 17}, StateSet{15, 18}, StateSet{14}, StateSet{8},  StateSet{6},  StateSet{5}, StateSet{11, 19},
     StateSet{16, 20}, StateSet{10},     StateSet{9},  StateSet{1},  StateSet{2},  StateSet{3}, StateSet{4}};
 
-void check_state(State s) {
-  if (s < 1 || s > kStateCount) throw std::out_of_range("EDC state " + std::to_string(s) + " is not in 1..20");
-}
-
 }  // namespace
 
 StateSet left_shift(State s) {

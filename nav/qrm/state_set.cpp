@@ -1,6 +1,8 @@
 #include "nav/qrm/state_set.hpp"
 
 #include <ostream>
+#include <stdexcept>
+#include <string>
 
 namespace neopipe::nav::qrm {
 
@@ -15,6 +17,10 @@ std::string StateSet::to_string() const {
 
 std::ostream& operator<<(std::ostream& out, StateSet set) {
   return out << set.to_string();
+}
+
+void check_state(State s) {
+  if (s < 1 || s > kStateCount) throw std::out_of_range("EDC state " + std::to_string(s) + " is not in 1..20");
 }
 
 }  // namespace neopipe::nav::qrm

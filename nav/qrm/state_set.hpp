@@ -103,4 +103,7 @@ class StateSet {
 
 std::ostream& operator<<(std::ostream& out, StateSet set);
 
+/// Throws std::out_of_range unless 1 <= s <= 20: the operators and tables take single states.
+void check_state(State s);
+
 }  // namespace neopipe::nav::qrm
