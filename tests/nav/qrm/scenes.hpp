@@ -6,10 +6,13 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "nav/qrm/edc.hpp"
 #include "nav/qrm/measurement.hpp"
+#include "nav/qrm/relational_map.hpp"
 
 namespace neopipe::nav::qrm::scenes {
 
@@ -42,6 +45,26 @@ inline std::array<Sighting, 3> sightings(const Eigen::Vector2d& camera, double z
     s[i] = {std::atan2(v.y(), v.x()) - zero, v.norm()};
   }
   return s;
+}
+
+/// The first relation of `map` that lost the true state of its landmarks at `points`, as
+/// "ij:k = {..} lost s"; empty when every relation holds its truth.
+inline std::string first_lost_truth(const RelationalMap& map, const std::vector<Eigen::Vector2d>& points) {
+  const auto& ids = map.landmarks();
+  for (const LandmarkId i : ids) {
+    for (const LandmarkId j : ids) {
+      for (const LandmarkId k : ids) {
+        if (i == j || j == k || i == k) continue;
+        const State truth = classify(points[i], points[j], points[k]);
+        if (!map.relation(i, j, k).contains(truth)) {
+          std::ostringstream out;
+          out << i << j << ':' << k << " = " << map.relation(i, j, k) << " lost " << truth;
+          return out.str();
+        }
+      }
+    }
+  }
+  return {};
 }
 
 }  // namespace neopipe::nav::qrm::scenes

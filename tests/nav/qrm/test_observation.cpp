@@ -26,19 +26,6 @@ std::vector<LandmarkSighting> panorama(const std::vector<Eigen::Vector2d>& point
   return s;
 }
 
-void expect_true_states_kept(const RelationalMap& map, const std::vector<Eigen::Vector2d>& points) {
-  const auto& ids = map.landmarks();
-  for (const LandmarkId p : ids) {
-    for (const LandmarkId q : ids) {
-      for (const LandmarkId r : ids) {
-        if (p == q || q == r || p == r) continue;
-        const State truth = classify(points[p], points[q], points[r]);
-        ASSERT_TRUE(map.relation(p, q, r).contains(truth)) << p << q << ':' << r << " lost state " << truth;
-      }
-    }
-  }
-}
-
 }  // namespace
 
 TEST(QrmObservation, FusesEveryTripleOfTheNearestAndKeepsTheTruth) {
@@ -58,7 +45,7 @@ TEST(QrmObservation, FusesEveryTripleOfTheNearestAndKeepsTheTruth) {
     EXPECT_EQ(r.triples, 56U);  // C(8, 3)
     EXPECT_EQ(r.inconsistent, 0U);
     refined += r.refined;
-    expect_true_states_kept(map, points);
+    EXPECT_EQ(scenes::first_lost_truth(map, points), "");
   }
   EXPECT_GT(refined, 0U);
   // The first image alone already pins many relations: exact bearings leave few states open.

@@ -33,20 +33,6 @@ struct Measurement {
   StateSet states;
 };
 
-// Every relation of the map holds the true state of its landmarks.
-void expect_truth_kept(const RelationalMap& map, const std::vector<Eigen::Vector2d>& p) {
-  const auto& ids = map.landmarks();
-  for (const LandmarkId i : ids) {
-    for (const LandmarkId j : ids) {
-      for (const LandmarkId k : ids) {
-        if (i == j || j == k || i == k) continue;
-        ASSERT_TRUE(map.relation(i, j, k).contains(classify(p[i], p[j], p[k])))
-            << i << j << ":" << k << " = " << map.relation(i, j, k) << " lost " << classify(p[i], p[j], p[k]);
-      }
-    }
-  }
-}
-
 // Measurements of every triple of the `k` nearest landmarks from `images` random camera positions,
 // each of all 20 candidates (so the list does not depend on the map it will be fused into).
 std::vector<Measurement> measurements(std::mt19937_64& rng, const std::vector<Eigen::Vector2d>& p, int images, int k) {
@@ -100,7 +86,7 @@ TEST(QrmMap, GoldenExampleOfSection7) {
     EXPECT_EQ(map.relation(e.q, e.p, e.r), inverse(e.s)) << "read through I";
   }
   const std::vector<Eigen::Vector2d> truth{{0, 0}, {1, -1}, {6, -1}, {2, -6}};
-  expect_truth_kept(map, truth);
+  EXPECT_EQ(scenes::first_lost_truth(map, truth), "");
   EXPECT_EQ(map.inconsistencies(), 0);
 }
 
@@ -131,7 +117,7 @@ TEST(QrmMap, NoTrueStateIsEverLostOverRandomWorlds) {
       ASSERT_NE(map.fuse(m.a, m.b, m.c, m.states), FuseOutcome::inconsistent);
       ++fused;
     }
-    expect_truth_kept(map, p);
+    EXPECT_EQ(scenes::first_lost_truth(map, p), "");
     EXPECT_EQ(map.inconsistencies(), 0);
   }
   EXPECT_GT(fused, 1000);
