@@ -35,35 +35,44 @@ RngComparison compare_rng(const RngEdges& estimated, const RngEdges& truth) {
   return c;
 }
 
-QrmMetrics qrm_metrics(const qrm::RelationalMap& map, std::span<const Eigen::Vector2d> truth,
-                       const std::optional<RngEdges>& true_rng) {
-  for (const qrm::LandmarkId id : map.landmarks()) {
-    if (id >= truth.size()) {
-      throw std::out_of_range("qrm metrics: landmark " + std::to_string(id) + " is not in the world");
+QrmTruth::QrmTruth(std::span<const Eigen::Vector2d> points) : n_(points.size()) {
+  states_.reserve(n_ < 3 ? 0 : n_ * (n_ - 1) * (n_ - 2) / 6);
+  for (std::size_t i = 0; i < n_; ++i) {
+    for (std::size_t j = i + 1; j < n_; ++j) {
+      for (std::size_t k = j + 1; k < n_; ++k) {
+        const std::array<qrm::State, 3> s{qrm::classify(points[i], points[j], points[k]),
+                                          qrm::classify(points[j], points[k], points[i]),
+                                          qrm::classify(points[k], points[i], points[j])};
+        if (s[0] == 0 || s[1] == 0 || s[2] == 0) throw qrm::DegenerateTripleError(i, j, k);
+        states_.push_back(s);
+      }
     }
   }
+  rng_ = qrm::true_rng(points);
+}
+
+QrmMetrics QrmTruth::metrics(const qrm::RelationalMap& map) const {
+  for (const qrm::LandmarkId id : map.landmarks()) {
+    if (id >= n_) throw std::out_of_range("qrm metrics: landmark " + std::to_string(id) + " is not in the world");
+  }
   QrmMetrics m;
-  const std::size_t n = truth.size();
-  m.landmarks = n;
-  m.triples = n < 3 ? 0 : n * (n - 1) * (n - 2) / 6;
+  m.landmarks = n_;
+  m.triples = states_.size();
   double removed = 0;
   std::size_t resolved = 0;
   std::size_t far_wrong = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      for (std::size_t k = j + 1; k < n; ++k) {
-        const bool known = map.has_landmark(static_cast<qrm::LandmarkId>(i)) &&
-                           map.has_landmark(static_cast<qrm::LandmarkId>(j)) &&
-                           map.has_landmark(static_cast<qrm::LandmarkId>(k));
+  std::size_t t = 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    for (std::size_t j = i + 1; j < n_; ++j) {
+      for (std::size_t k = j + 1; k < n_; ++k, ++t) {
+        const auto id = [](std::size_t x) { return static_cast<qrm::LandmarkId>(x); };
+        const bool known = map.has_landmark(id(i)) && map.has_landmark(id(j)) && map.has_landmark(id(k));
         const std::array<std::array<std::size_t, 3>, 3> orders{{{i, j, k}, {j, k, i}, {k, i, j}}};
         bool all_single = true;
-        for (const auto& [p, q, r] : orders) {
-          const qrm::State s = qrm::classify(truth[p], truth[q], truth[r]);
-          if (s == 0) throw qrm::DegenerateTripleError(i, j, k);
-          const qrm::StateSet open =
-              known ? map.relation(static_cast<qrm::LandmarkId>(p), static_cast<qrm::LandmarkId>(q),
-                                   static_cast<qrm::LandmarkId>(r))
-                    : qrm::StateSet::all();
+        for (int o = 0; o < 3; ++o) {
+          const qrm::State s = states_[t][o];
+          const auto& [p, q, r] = orders[o];
+          const qrm::StateSet open = known ? map.relation(id(p), id(q), id(r)) : qrm::StateSet::all();
           removed += qrm::kStateCount - open.count();
           all_single = all_single && open.count() == 1;
           if (!open.contains(s)) ++m.lost;
@@ -87,10 +96,13 @@ QrmMetrics qrm_metrics(const qrm::RelationalMap& map, std::span<const Eigen::Vec
   }
   std::sort(m.rng.begin(), m.rng.end());
   std::sort(m.certain_rng.begin(), m.certain_rng.end());
-  const RngEdges exact = true_rng ? *true_rng : qrm::true_rng(truth);
-  m.versus_truth = compare_rng(m.rng, exact);
-  m.certain_versus_truth = compare_rng(m.certain_rng, exact);
+  m.versus_truth = compare_rng(m.rng, rng_);
+  m.certain_versus_truth = compare_rng(m.certain_rng, rng_);
   return m;
+}
+
+QrmMetrics qrm_metrics(const qrm::RelationalMap& map, std::span<const Eigen::Vector2d> truth) {
+  return QrmTruth(truth).metrics(map);
 }
 
 std::optional<std::array<std::size_t, 3>> first_degenerate_triple(std::span<const Eigen::Vector2d> points) {

@@ -11,6 +11,7 @@
 // RNG.
 
 #include <Eigen/Core>
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -52,12 +53,27 @@ struct QrmMetrics {
   RngComparison certain_versus_truth;
 };
 
-/// The metrics of `map` over the landmarks `landmarks` (ids into `truth`; by default every id of
-/// `truth`, landmarks absent from the map counting as relations of all 20 states). `true_rng`: the
-/// RNG of `truth` (computed when absent). Throws nav::qrm::DegenerateTripleError for a degenerate
-/// true triple, std::out_of_range for a landmark id beyond `truth`.
-QrmMetrics qrm_metrics(const nav::qrm::RelationalMap& map, std::span<const Eigen::Vector2d> truth,
-                       const std::optional<RngEdges>& true_rng = std::nullopt);
+/// The ground truth of a landmark set, computed once so that a map can be judged after every image:
+/// the true state of the three relations of every triple, and the true RNG.
+class QrmTruth {
+ public:
+  /// Throws nav::qrm::DegenerateTripleError for a degenerate triple.
+  explicit QrmTruth(std::span<const Eigen::Vector2d> points);
+  [[nodiscard]] std::size_t landmarks() const { return n_; }
+  [[nodiscard]] const RngEdges& rng() const { return rng_; }
+  /// The metrics of `map` over every landmark of the truth (landmarks absent from the map count as
+  /// relations of all 20 states). Throws std::out_of_range for a map landmark beyond the truth.
+  [[nodiscard]] QrmMetrics metrics(const nav::qrm::RelationalMap& map) const;
+
+ private:
+  std::size_t n_ = 0;
+  /// ij:k, jk:i, ki:j of every triple i < j < k, in lexicographic order.
+  std::vector<std::array<nav::qrm::State, 3>> states_;
+  RngEdges rng_;
+};
+
+/// QrmTruth(truth).metrics(map).
+QrmMetrics qrm_metrics(const nav::qrm::RelationalMap& map, std::span<const Eigen::Vector2d> truth);
 
 /// The first degenerate triple (i < j < k) of a world (spec §2: some e within 1e-9 |AB|^2 of zero
 /// for one of its orders), or none. The simulator resamples such worlds; a user's file is an error.
