@@ -20,6 +20,9 @@ inline constexpr std::uint64_t onboard_camera = 1;     ///< a journey's onboard 
 inline constexpr std::uint64_t panorama = 2;           ///< a journey's panoramic sensor (bearings, compass)
 inline constexpr std::uint64_t gaussian_survey = 100;  ///< the Gaussian survey's errors
 inline constexpr std::uint64_t global_camera = 101;    ///< the global camera's noise (survey, calibration)
+inline constexpr std::uint64_t qrm_positions = 200;    ///< QRM map building: the imaging positions
+inline constexpr std::uint64_t qrm_headings = 201;     ///< QRM map building: the sensor's zero direction per image
+inline constexpr std::uint64_t qrm_world = 202;        ///< a QRM Monte Carlo run's world
 }  // namespace streams
 
 }  // namespace neopipe::rig

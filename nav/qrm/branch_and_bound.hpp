@@ -23,4 +23,10 @@ struct Feasibility {
 /// the same number of unknowns; deterministic.
 Feasibility find_feasible(std::span<const Quadratic> constraints, const Box& box, int max_depth);
 
+/// The same search over constraints given by address with their negations (-g_j, which the search
+/// uses to stop testing a constraint negative over a whole box): a caller testing many sets drawn
+/// from the same quadratics (the 20 states of a measurement) builds each quadratic once.
+Feasibility find_feasible(std::span<const Quadratic* const> constraints, std::span<const Quadratic* const> negated,
+                          const Box& box, int max_depth);
+
 }  // namespace neopipe::nav::qrm

@@ -51,6 +51,17 @@ Interval range_of(const Affine& f, const Box& box, int n) {
 
 }  // namespace
 
+// operator() for n = 2, term for term (inlined: the bounds call it at every corner of every box).
+inline double Quadratic::eval2(double x0, double x1) const {
+  double g = constant_;
+  double row0 = square_[0] * x0 + linear_[0];
+  row0 += cross_[0][1] * x1;
+  g += row0 * x0;
+  const double row1 = square_[1] * x1 + linear_[1];
+  g += row1 * x1;
+  return g;
+}
+
 Affine Affine::unknown(int i) {
   Affine f;
   f.a.at(i) = 1;
@@ -143,6 +154,7 @@ Quadratic Quadratic::negated() const {
 }
 
 double Quadratic::operator()(const Point4& x) const {
+  if (n_ == 2) return eval2(x[0], x[1]);
   double g = constant_;
   for (int i = 0; i < n_; ++i) {
     double row = square_[i] * x[i] + linear_[i];
@@ -153,6 +165,49 @@ double Quadratic::operator()(const Point4& x) const {
 }
 
 double Quadratic::lower_bound(const Box& box) const {
+  if (n_ == 2) {
+    switch (kind_) {
+      case BoundKind::corners:
+        return corners_bound2(box);
+      case BoundKind::separable:
+        return separable_bound(box);
+      case BoundKind::one_square:
+        return one_square_bound2(box);
+      case BoundKind::interval:
+        return interval_bound(box);
+    }
+  }
+  return lower_bound_generic(box);
+}
+
+// corners_bound for n = 2: the same corners (an unused unknown stays 0), so the same minimum.
+double Quadratic::corners_bound2(const Box& box) const {
+  if (active_count_ == 2) {
+    return std::min(std::min(eval2(box.lo[0], box.lo[1]), eval2(box.hi[0], box.lo[1])),
+                    std::min(eval2(box.lo[0], box.hi[1]), eval2(box.hi[0], box.hi[1])));
+  }
+  if (active_count_ == 0) return eval2(0, 0);
+  if (active_[0] == 0) return std::min(eval2(box.lo[0], 0), eval2(box.hi[0], 0));
+  return std::min(eval2(0, box.lo[1]), eval2(0, box.hi[1]));
+}
+
+// one_square_bound for n = 2: the other unknown at each end of its range (0 when g does not use
+// it); one_square_at2 is one_square_at for two unknowns, in scalars.
+double Quadratic::one_square_bound2(const Box& box) const {
+  if (active_count_ == 1) return one_square_at2(0, box);
+  const int o = 1 - squared_unknown_;
+  return std::min(one_square_at2(box.lo[o], box), one_square_at2(box.hi[o], box));
+}
+
+[[gnu::noinline]] double Quadratic::one_square_at2(double other, const Box& box) const {
+  const int k = squared_unknown_;
+  double b = linear_[k];
+  b += cross_[0][1] * other;
+  const double g = k == 0 ? eval2(0, other) : eval2(other, 0);
+  return g + min_1d(square_[k], b, box.lo[k], box.hi[k]);
+}
+
+double Quadratic::lower_bound_generic(const Box& box) const {
   switch (kind_) {
     case BoundKind::corners:
       return corners_bound(box);
@@ -198,14 +253,22 @@ double Quadratic::one_square_bound(const Box& box) const {
       if (i == k) continue;
       x[i] = ((corner >> bit++) & 1U) != 0 ? box.hi[i] : box.lo[i];
     }
-    x[k] = 0;
-    double b = linear_[k];
-    for (int j = 0; j < n_; ++j) {
-      if (j != k) b += cross_[std::min(j, k)][std::max(j, k)] * x[j];
-    }
-    best = std::min(best, (*this)(x) + min_1d(square_[k], b, box.lo[k], box.hi[k]));
+    best = std::min(best, one_square_at(x, box));
   }
   return best;
+}
+
+// One corner of the unknowns other than x_k (x_k itself is ignored): g there with x_k = 0 plus the
+// 1-D minimum along x_k. Never inlined, so that both bounds that use it round alike: with fused
+// multiply-adds, inlining lets the compiler fuse this sum with the caller's arithmetic differently.
+[[gnu::noinline]] double Quadratic::one_square_at(Point4 x, const Box& box) const {
+  const int k = squared_unknown_;
+  x[k] = 0;
+  double b = linear_[k];
+  for (int j = 0; j < n_; ++j) {
+    if (j != k) b += cross_[std::min(j, k)][std::max(j, k)] * x[j];
+  }
+  return (*this)(x) + min_1d(square_[k], b, box.lo[k], box.hi[k]);
 }
 
 double Quadratic::interval_bound(const Box& box) const {

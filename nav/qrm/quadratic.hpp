@@ -60,6 +60,10 @@ class Quadratic {
   double operator()(const Point4& x) const;
   /// A lower bound of g over `box` (exact for the first three kinds, up to rounding).
   double lower_bound(const Box& box) const;
+  /// The same bound by the code for any number of unknowns. lower_bound takes a path specialised
+  /// for two unknowns (the measurement problems, most of the work of map building) that computes
+  /// the same operations in the same order: a test holds the two equal bit for bit.
+  double lower_bound_generic(const Box& box) const;
 
   /// Expanded coefficients: g = sum_i square(i) x_i^2 + sum_{i<j} cross(i,j) x_i x_j + linear(i) x_i + constant().
   double square(int i) const { return square_[i]; }
@@ -73,6 +77,11 @@ class Quadratic {
   double separable_bound(const Box& box) const;
   double one_square_bound(const Box& box) const;
   double interval_bound(const Box& box) const;
+  double eval2(double x0, double x1) const;
+  double corners_bound2(const Box& box) const;
+  double one_square_bound2(const Box& box) const;
+  double one_square_at(Point4 x, const Box& box) const;
+  double one_square_at2(double other, const Box& box) const;
 
   int n_;
   std::vector<Product> products_;
