@@ -267,6 +267,11 @@ int trials(const NavArgs& a, const Setup& s) {
 CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
+  cmd->add_option("--system", a.system,
+                  "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
+                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first")
+      ->check(CLI::IsMember({"park-kender", "qrm"}))
+      ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
@@ -322,6 +327,10 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--survey-csv", a.survey_csv,
                   "Write every object's surveyed position (what the map-maker believes) beside the true one: CSV "
                   "id,x,y,true_x,true_y,error");
+  cmd->add_option("--images", a.images, "qrm: imaging positions of the tour that builds the robot's map")
+      ->capture_default_str();
+  cmd->add_option("--k", a.k, "qrm: the k nearest landmarks of each image are fused into the map")
+      ->capture_default_str();
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
@@ -333,6 +342,7 @@ int nav_command(const NavArgs& a) {
   }
   if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
   if (a.trials && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to, not --trials"};
+  if (a.system == "qrm") return qrm_nav_command(a);
   if (!a.trials && !a.diagram.empty()) throw UsageError{"--reliability-diagram goes with --trials"};
   if (a.trials && (!a.plot.empty() || !a.video.empty())) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
