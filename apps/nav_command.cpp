@@ -331,18 +331,23 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
       ->capture_default_str();
   cmd->add_option("--k", a.k, "qrm: the k nearest landmarks of each image are fused into the map")
       ->capture_default_str();
+  cmd->add_option("--pairs", a.pairs,
+                  "qrm: journeys between the pairs of a trials JSON (its journeys' from/to, e.g. Park & Kender's "
+                  "--trials --json) instead of --trials random draws, so the two systems meet the same pairs")
+      ->type_name("FILE");
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
 
 int nav_command(const NavArgs& a) {
+  if (a.system == "qrm") return qrm_nav_command(a);
+  if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {
     throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};
   }
   if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
   if (a.trials && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to, not --trials"};
-  if (a.system == "qrm") return qrm_nav_command(a);
   if (!a.trials && !a.diagram.empty()) throw UsageError{"--reliability-diagram goes with --trials"};
   if (a.trials && (!a.plot.empty() || !a.video.empty())) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};

@@ -41,6 +41,7 @@ struct NavArgs {
   std::string video;
   std::int64_t images = 30;  ///< qrm: imaging positions of the tour that builds the map
   std::int64_t k = 18;       ///< qrm: the k nearest landmarks of an image are fused (spec qrm.md §9)
+  std::string pairs;         ///< qrm: journeys between the pairs of a trials JSON instead of random draws
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
@@ -145,15 +146,47 @@ int one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem&
   return kExitOk;
 }
 
+// The pairs of a trials JSON (`neopipe nav --trials N --json` of either system), planned by QRM.
+std::vector<std::unique_ptr<rig::Plan>> plans_for_pairs(const std::string& path, const rig::QrmSystem& system,
+                                                        std::size_t objects) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("--pairs {}: cannot open", path));
+  const json j = json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("journeys") || !j["journeys"].is_array()) {
+    throw std::runtime_error(fmt::format("--pairs {}: not a trials JSON (no \"journeys\" list)", path));
+  }
+  std::vector<std::unique_ptr<rig::Plan>> plans;
+  for (const json& t : j["journeys"]) {
+    if (!t.contains("from") || !t.contains("to") || !t["from"].is_number_unsigned() || !t["to"].is_number_unsigned()) {
+      throw std::runtime_error(fmt::format("--pairs {}: journey {} has no from/to ids", path, plans.size()));
+    }
+    const auto from = t["from"].get<std::uint32_t>();
+    const auto to = t["to"].get<std::uint32_t>();
+    if (from >= objects || to >= objects || from == to) {
+      throw std::runtime_error(
+          fmt::format("--pairs {}: journey {} ({} -> {}) does not fit this world", path, plans.size(), from, to));
+    }
+    try {
+      plans.push_back(system.plan(from, to));
+    } catch (const rig::UnreachableGoal& e) {
+      throw std::runtime_error(fmt::format("--pairs {}: journey {}: {}", path, plans.size(), e.what()));
+    }
+  }
+  if (plans.empty()) throw std::runtime_error(fmt::format("--pairs {}: no journeys", path));
+  return plans;
+}
+
 int trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
   const std::vector<std::unique_ptr<rig::Plan>> plans =
-      rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
-  ProgressBar bar("nav", *a.trials, true);
+      a.pairs.empty() ? rig::draw_plans(system, world.objects.size(), *a.trials, a.seed)
+                      : plans_for_pairs(a.pairs, system, world.objects.size());
+  ProgressBar bar("nav", std::ssize(plans), true);
   const rig::TrialsSummary t = rig::run_trials(system, plans, world, journey_settings(a), a.threads,
                                                [&](std::int64_t done) { bar.update(done); });
   bar.clear();
   json j = rig::qrm_trials_json(system, plans, t);
   j["world"] = a.world;
+  if (!a.pairs.empty()) j["pairs"] = a.pairs;
   j["seed"] = a.seed;
   j["sigma_move"] = a.sigma_move;
   j["sigma_rot"] = a.sigma_rot;
@@ -185,10 +218,17 @@ int trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& syst
 }  // namespace
 
 int qrm_nav_command(const NavArgs& a) {
+  if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
+  if (static_cast<int>(a.from.has_value()) + static_cast<int>(a.trials.has_value()) +
+          static_cast<int>(!a.pairs.empty()) !=
+      1) {
+    throw UsageError{"give one of --from I --to J (one journey), --trials N (random journeys) or --pairs FILE"};
+  }
+  if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
+  if (!a.from && !a.plot.empty()) throw UsageError{"--plot draws one journey: use it with --from/--to"};
+  if (!a.from && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to"};
   if (!a.diagram.empty()) throw UsageError{"--reliability-diagram is Park & Kender's: QRM makes no forecast"};
   if (!a.video.empty()) throw UsageError{"--video is Park & Kender's onboard view"};
-  if (a.trials && !a.plot.empty()) throw UsageError{"--plot draws one journey: use it with --from/--to, not --trials"};
-  if (a.trials && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to, not --trials"};
   if (a.images < 1) throw UsageError{fmt::format("--images {}: must be at least 1", a.images)};
   if (a.k < 3) throw UsageError{fmt::format("--k {}: a triple needs at least 3 landmarks", a.k)};
   if (!(a.sigma_move >= 0) || !(a.sigma_rot >= 0) || !std::isfinite(a.sigma_move) || !std::isfinite(a.sigma_rot)) {
@@ -209,7 +249,7 @@ int qrm_nav_command(const NavArgs& a) {
       world, settings, nullptr, [&](std::size_t done) { bar.update(static_cast<std::int64_t>(done)); });
   bar.clear();
   const rig::QrmSystem system(world, std::move(map), settings);
-  return a.trials ? trials(a, world, system) : one_journey(a, world, system);
+  return a.from ? one_journey(a, world, system) : trials(a, world, system);
 }
 
 }  // namespace neopipe::apps

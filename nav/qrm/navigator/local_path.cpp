@@ -48,11 +48,14 @@ std::optional<Vector2d> path_step(const std::vector<Obstacle>& obstacles, Landma
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x);
   };
   const auto centre = [&](int x, int y) { return Vector2d((x - mid) * cell, (y - mid) * cell); };
-  // Blocked cells: each marble's disc of `keep`, shrunk so that the tool's own cell stays free when
-  // an arm error has taken it inside one.
+  // Blocked cells: each marble's disc of `keep`, shrunk to the tool's distance when an arm error has
+  // taken it inside one (it may not come closer, as step_allowed says).
   std::vector<std::uint8_t> blocked(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+  std::vector<double> radii;
+  radii.reserve(obstacles.size());
   for (const Obstacle& o : obstacles) {
-    const double r = std::min(keep, o.at.norm() - cell);
+    const double r = std::min(keep, o.at.norm()) - 1e-9;
+    radii.push_back(r);
     if (r <= 0) continue;
     const int x0 = std::max(0, static_cast<int>(std::floor((o.at.x() - r) / cell)) + mid);
     const int x1 = std::min(n - 1, static_cast<int>(std::ceil((o.at.x() + r) / cell)) + mid);
@@ -106,24 +109,24 @@ std::optional<Vector2d> path_step(const std::vector<Obstacle>& obstacles, Landma
   std::vector<std::int32_t> path;
   for (std::int32_t c = goal; c != -1; c = parent[static_cast<std::size_t>(c)]) path.push_back(c);
   std::reverse(path.begin(), path.end());
+  // Exactly, not by cells: a segment between blocked cells' centres may still graze a disc.
   const auto in_sight = [&](const Vector2d& p) {
-    const int samples = static_cast<int>(std::ceil(p.norm() / (cell / 2)));
+    const int samples = static_cast<int>(std::ceil(p.norm() / (cell / 4)));
     for (int i = 1; i <= samples; ++i) {
       const Vector2d s = p * (static_cast<double>(i) / samples);
-      const int x = static_cast<int>(std::lround(s.x() / cell)) + mid;
-      const int y = static_cast<int>(std::lround(s.y() / cell)) + mid;
-      if (x < 0 || y < 0 || x >= n || y >= n || blocked[index(x, y)] != 0) return false;
+      for (std::size_t m = 0; m < obstacles.size(); ++m) {
+        if ((s - obstacles[m].at).norm() < radii[m]) return false;
+      }
     }
     return true;
   };
-  Vector2d aim = centre(path[1] % n, path[1] / n);
-  for (std::size_t i = 2; i < path.size(); ++i) {
+  std::optional<Vector2d> best;
+  for (std::size_t i = 1; i < path.size(); ++i) {
     const Vector2d p = centre(path[i] % n, path[i] / n);
     if (!in_sight(p)) break;
-    aim = p;
+    if (const Vector2d s = step * p.normalized(); in_sight(s)) best = s;
   }
-  if (aim.norm() < 1e-9) return std::nullopt;
-  return step * aim.normalized();
+  return best;
 }
 
 }  // namespace neopipe::nav::qrm
