@@ -68,7 +68,9 @@ TEST(QrmSystem, JourneysReachTheirGoalsKeepingClearOfTheMarbles) {
     const Vector2d at = w.objects[plan->start] + plan->start_offset;
     for (std::size_t i = 0; i < w.objects.size(); ++i) {
       EXPECT_GE((w.objects[i] - at).norm(), 12.5);
-      if (i != plan->start) EXPECT_LT(plan->start_offset.norm(), (w.objects[i] - at).norm());
+      if (i != plan->start) {
+        EXPECT_LT(plan->start_offset.norm(), (w.objects[i] - at).norm());
+      }
     }
     rig::JourneySettings js;
     js.seed = 7;
