@@ -14,9 +14,9 @@
 #include "nav/qrm/observation.hpp"
 #include "nav/qrm/rng.hpp"
 #include "rig/outcome.hpp"
+#include "rig/qrm_imaging.hpp"
 #include "rig/seeds.hpp"
 #include "sim/panorama.hpp"
-#include "sim/random.hpp"
 
 namespace neopipe::rig {
 namespace {
@@ -25,11 +25,11 @@ namespace q = nav::qrm;
 using Eigen::Vector2d;
 using nlohmann::json;
 
-// The tour's own random stream of the experiment seed (rig/seeds.hpp numbers the rig's streams;
-// this one is QRM's and far from them).
+// The tour's own random streams of the experiment seed (rig/seeds.hpp numbers the rig's streams;
+// these are QRM's and far from them): positions, bearing noise, zero directions.
 constexpr std::uint64_t kTourStream = 200;
-// Imaging positions and the start keep this much more than kMinClearanceMm from every marble's
-// surface, so the arm's first error cannot take the tool inside the clearance.
+// The start keeps this much more than kMinClearanceMm from every marble's surface, so the arm's
+// first error cannot take the tool inside the clearance.
 constexpr double kPlacementMarginMm = 2.5;
 
 void check_marbles(const sim::World& world) {
@@ -93,32 +93,22 @@ q::RelationalMap build_map_by_tour(const sim::World& world, const QrmSettings& s
                                    const std::function<void(std::size_t)>& progress) {
   check_marbles(world);
   const auto start = std::chrono::steady_clock::now();
-  const double radius = world.marble_diameter / 2;
-  sim::Random random(stream_seed(settings.seed, kTourStream));
-  sim::PanoramaSettings ps;
-  ps.bearing_noise_deg = settings.bearing_noise_deg;
-  ps.seed = stream_seed(settings.seed, kTourStream + 1);
-  sim::PanoramicSensor sensor(world, ps);
-  nav::PanoramaReader reader({radius, settings.bearing_noise_deg});
+  QrmImagingSettings imaging;
+  imaging.sensor.bearing_noise_deg = settings.bearing_noise_deg;
+  imaging.sensor.seed = stream_seed(settings.seed, kTourStream + 1);
+  imaging.heading_seed = stream_seed(settings.seed, kTourStream + 2);
+  imaging.observation = settings.navigator.observation;
+  const std::vector<Vector2d> positions =
+      random_imaging_positions(world, settings.images, stream_seed(settings.seed, kTourStream));
   q::RelationalMap map;
   ImagingTour done;
-  for (std::size_t i = 0; i < settings.images; ++i) {
-    // Uniform over the workspace, redrawn while too near a marble (a world too crowded for any clear
-    // point would loop: give up after many draws).
-    Vector2d p;
-    int draws = 0;
-    do {
-      if (++draws > 100000) throw std::invalid_argument("the world has no point clear of its marbles to image from");
-      p = {random.uniform(0, world.size.x()), random.uniform(0, world.size.y())};
-    } while (!sim::keeps_clear(world, p, sim::kMinClearanceMm + kPlacementMarginMm));
-    const double heading = random.uniform(0, 2 * std::numbers::pi);  // the sensor's zero direction
-    const sim::Ring ring = sensor.ring({p.x(), p.y(), heading});
-    const q::ObservationReport o =
-        q::observe(map, q::landmark_sightings(reader.read(ring.image)), settings.navigator.observation);
+  for (const QrmImageReport& r :
+       qrm_imaging_tour(world, positions, imaging, map, [&](std::size_t i, const QrmImageReport&) {
+         if (progress) progress(i + 1);
+       })) {
     ++done.images;
-    done.triples += o.triples;
-    done.inconsistent += o.inconsistent;
-    if (progress) progress(i + 1);
+    done.triples += r.fused.triples;
+    done.inconsistent += r.fused.inconsistent;
   }
   done.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (tour != nullptr) *tour = done;

@@ -39,9 +39,9 @@ struct ImagingTour {
   double seconds = 0;
 };
 
-/// The map of `world` built from `settings.images` panoramas at random positions clear of the marbles
-/// (kMinClearanceMm plus a millimetre), each at a random heading (the sensor's zero direction), read
-/// by the engine's panorama graph and fused by observe() (k nearest). `progress` gets the images done.
+/// The map of `world` built by the imaging tour (rig/qrm_imaging.hpp) at `settings.images` random
+/// positions clear of the marbles, each ring at a random zero direction, read by the engine's
+/// panorama graph, its k nearest (not partly hidden) sightings fused. `progress` gets the images done.
 /// Throws std::invalid_argument for a world of fewer than three marbles.
 nav::qrm::RelationalMap build_map_by_tour(const sim::World& world, const QrmSettings& settings,
                                           ImagingTour* tour = nullptr,

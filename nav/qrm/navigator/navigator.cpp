@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -127,7 +128,10 @@ NavigationReport navigate(RelationalMap& map, LandmarkId goal, Eye& eye, Arm& ar
   std::vector<PanoramaSighting> seen = eye.look();
   ++report.frames;
   const auto fuse = [&] {
-    const ObservationReport o = observe(map, landmark_sightings(seen), config.observation);
+    std::vector<PanoramaSighting> whole;
+    std::copy_if(seen.begin(), seen.end(), std::back_inserter(whole),
+                 [&](const PanoramaSighting& s) { return config.fuse_partial_sightings || !s.partial; });
+    const ObservationReport o = observe(map, landmark_sightings(whole), config.observation);
     ++report.images_fused;
     report.inconsistent += o.inconsistent;
   };

@@ -66,6 +66,11 @@ struct NavigatorConfig {
   /// of spec §8, which fails at once: from beside a marble, its disc hides what lies behind it).
   int search_steps = 16;
   ObservationOptions observation;  ///< k = 18 nearest (spec §9)
+  /// A sighting flagged partial (a disc partly hidden by a nearer one) has a range estimate too large
+  /// by an unknown factor, which can invert the range order a measurement trusts: as the imaging
+  /// tour does (rig/qrm_imaging.hpp), such sightings are left out of the images fused. They still
+  /// count for the nearest landmark (never partial: the nearest disc is drawn over all) and clearance.
+  bool fuse_partial_sightings = false;
 };
 
 /// How a journey ended, in the navigator's words.
