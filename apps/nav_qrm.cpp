@@ -53,9 +53,10 @@ void write_qrm_plot(const std::string& path, const sim::World& world, const rig:
   for (const q::RngEdge& e : q::estimate_rng(system.map()).edges) {
     cv::line(img, px(world.objects[e.i]), px(world.objects[e.j]), cv::Scalar(200, 200, 200), 1, cv::LINE_AA);
   }
-  for (std::size_t i = 1; i < plan.landmarks.size(); ++i) {
-    cv::line(img, px(world.objects[plan.landmarks[i - 1]]), px(world.objects[plan.landmarks[i]]),
-             cv::Scalar(220, 120, 0), 2, cv::LINE_AA);
+  const std::vector<q::LandmarkId>& route = rig::qrm_route(plan);
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    cv::line(img, px(world.objects[route[i - 1]]), px(world.objects[route[i]]), cv::Scalar(220, 120, 0), 2,
+             cv::LINE_AA);
   }
   for (std::size_t i = 1; i < r.arm.track.size(); ++i) {
     cv::line(img, px(r.arm.track[i - 1]), px(r.arm.track[i]), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
@@ -111,7 +112,7 @@ int one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem&
     std::cout << json{{"system", "qrm"},
                       {"from", from},
                       {"to", to},
-                      {"planned_route", plan->landmarks},
+                      {"planned_route", rig::qrm_route(*plan)},
                       {"first_route", report.first_route},
                       {"reached", report.reached},
                       {"held", held},
@@ -134,7 +135,7 @@ int one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem&
     return kExitOk;
   }
   const auto ids = [](const auto& v) { return fmt::format("{}", fmt::join(v, " -> ")); };
-  std::cout << fmt::format("route {} -> {} on the built map: {}\n", from, to, ids(plan->landmarks))
+  std::cout << fmt::format("route {} -> {} on the built map: {}\n", from, to, ids(rig::qrm_route(*plan)))
             << fmt::format("landmarks held: {}\n", ids(report.reached))
             << fmt::format("outcome: {} (navigator: {}{}{})\n", rig::outcome_name(r.outcome),
                            q::navigation_ending_name(report.ending), r.travel.reason.empty() ? "" : ", ",

@@ -53,26 +53,24 @@ Ending ending_of(q::NavigationEnding e) {
   return Ending::lost;
 }
 
-// Passes the navigator's landmarks to the rig's witness as entries of the plan: a landmark that is
-// the plan's next entry (or a later one, when a re-route skipped some) is claimed at that entry; a
-// landmark off the plan (after a re-route) is no entry of it and is not claimed, so the skipped
-// entries stay unclaimed and the rig counts the journey's success as not every step correct.
+// Passes the navigator's landmarks to the rig's witness: the start (entry 0) and the goal (entry
+// 1), the plan's only entries. The landmarks between are the navigator's own account (its report).
 class EntryRelay final : public q::NavigationObserver {
  public:
   EntryRelay(const Plan& plan, Witness& witness) : plan_(plan), witness_(witness) {}
   void landmark_reached(q::LandmarkId id, const Vector2d& offset) override {
-    for (std::size_t e = next_; e < plan_.landmarks.size(); ++e) {
-      if (plan_.landmarks[e] != id) continue;
-      witness_.landmark_claimed(e, offset);
-      next_ = e + 1;
-      return;
+    if (id == plan_.goal) {
+      witness_.landmark_claimed(1, offset);
+    } else if (id == plan_.start && first_) {
+      witness_.landmark_claimed(0, offset);
     }
+    first_ = false;
   }
 
  private:
   const Plan& plan_;
   Witness& witness_;
-  std::size_t next_ = 0;
+  bool first_ = true;
 };
 
 // The nearest marble surface from `p`, mm, and whether `p` is nearer `id` than any other marble
@@ -141,7 +139,8 @@ std::unique_ptr<Plan> QrmSystem::plan(std::uint32_t from, std::uint32_t to) cons
   auto p = std::make_unique<QrmPlan>();
   p->start = from;
   p->goal = to;
-  p->landmarks.assign(route.begin(), route.end());
+  p->route = route;
+  p->landmarks = {from, to};
   // The harness places the tool in the start's Voronoi cell, clear of every marble: the nearest
   // such point on rings around it, first direction first (deterministic).
   const double radius = world_.marble_diameter / 2;
@@ -170,7 +169,8 @@ Travel QrmSystem::travel(const Plan& plan, Equipment& equipment, Witness& witnes
   q::RelationalMap map = map_;  // the journey's own copy: journeys run in parallel
   q::RingEye eye(equipment.camera, {world_.marble_diameter / 2, settings_.bearing_noise_deg});
   EntryRelay relay(plan, witness);
-  q::NavigationReport report = q::navigate(map, plan.goal, eye, equipment.arm, settings_.navigator, &relay);
+  q::NavigationReport report =
+      q::navigate(map, plan.goal, eye, equipment.arm, settings_.navigator, &relay, qrm_route(plan));
   Travel t;
   t.ending = ending_of(report.ending);
   t.reason = report.reason;
@@ -178,6 +178,12 @@ Travel QrmSystem::travel(const Plan& plan, Equipment& equipment, Witness& witnes
   t.frames = report.frames;
   t.details = std::move(report);
   return t;
+}
+
+const std::vector<q::LandmarkId>& qrm_route(const Plan& plan) {
+  const auto* p = dynamic_cast<const QrmPlan*>(&plan);
+  if (p == nullptr) throw std::invalid_argument("not a plan of the QRM system");
+  return p->route;
 }
 
 const q::NavigationReport* qrm_report(const Travel& travel) {
@@ -210,7 +216,7 @@ json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<
               {"to", r.to},
               {"outcome", outcome_name(r.outcome)},
               {"reason", r.reason},
-              {"planned_route", plans[i]->landmarks},
+              {"planned_route", qrm_route(*plans[i])},
               {"first_wrong_entry", r.first_wrong_entry ? json(*r.first_wrong_entry) : json(nullptr)},
               {"frames", r.frames},
               {"arm_travel", r.true_travel}};

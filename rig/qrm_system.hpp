@@ -47,8 +47,16 @@ nav::qrm::RelationalMap build_map_by_tour(const sim::World& world, const QrmSett
                                           ImagingTour* tour = nullptr,
                                           const std::function<void(std::size_t)>& progress = {});
 
-/// A QRM journey: Plan::landmarks is the route planned on the built map (start first).
-struct QrmPlan final : Plan {};
+/// A QRM journey. Plan::landmarks is {start, goal}: the route is re-planned as the map improves
+/// (spec §8), so its intermediate landmarks are no fixed entries the rig could hold the navigator
+/// to; the rig judges the start and, above all, the landmark the navigator believes is the goal.
+/// Leaving the planned route counts as a recovery (Travel::recoveries: re-routes).
+struct QrmPlan final : Plan {
+  std::vector<nav::qrm::LandmarkId> route;  ///< planned on the built map, start first
+};
+
+/// The route of a plan made by a QrmSystem. Throws std::invalid_argument for another plan.
+const std::vector<nav::qrm::LandmarkId>& qrm_route(const Plan& plan);
 
 class QrmSystem final : public NavigationSystem {
  public:

@@ -117,7 +117,7 @@ std::vector<LandmarkSighting> landmark_sightings(const std::vector<PanoramaSight
 }
 
 NavigationReport navigate(RelationalMap& map, LandmarkId goal, Eye& eye, Arm& arm, const NavigatorConfig& config,
-                          NavigationObserver* observer) {
+                          NavigationObserver* observer, std::span<const LandmarkId> planned) {
   NavigationReport report;
   const auto fail = [&](NavigationEnding e, std::string reason) {
     report.ending = e;
@@ -136,7 +136,7 @@ NavigationReport navigate(RelationalMap& map, LandmarkId goal, Eye& eye, Arm& ar
     report.inconsistent += o.inconsistent;
   };
   fuse();
-  std::vector<LandmarkId> previous;
+  std::vector<LandmarkId> previous(planned.begin(), planned.end());
   while (true) {
     // (1) The landmark nearest now: the robot is in its Voronoi cell.
     const PanoramaSighting* here = nearest_sighting(seen);

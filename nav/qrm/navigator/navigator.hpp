@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -112,10 +113,12 @@ struct NavigationReport {
   std::size_t inconsistent = 0;  ///< measurements rolled back while fusing
 };
 
-/// Navigates to the landmark `goal` with `map` (the journey's copy, refined as it goes). Never
+/// Navigates to the landmark `goal` with `map` (the journey's copy, refined as it goes). `planned`:
+/// the route planned before the journey, if any (on the map before this journey's images): a path
+/// that leaves it counts as a re-route, as a later path that leaves the previous one does. Never
 /// throws for a navigation failure; the report says how it ended.
 NavigationReport navigate(RelationalMap& map, LandmarkId goal, Eye& eye, Arm& arm, const NavigatorConfig& config,
-                          NavigationObserver* observer = nullptr);
+                          NavigationObserver* observer = nullptr, std::span<const LandmarkId> planned = {});
 
 /// The sightings as the map takes them: bearing in radians, range estimate.
 std::vector<LandmarkSighting> landmark_sightings(const std::vector<PanoramaSighting>& sightings);

@@ -153,6 +153,25 @@ TEST(QrmNavigator, FollowsTheSpecExampleRouteZeroTwoOneThree) {
   for (std::size_t i = 1; i < w.track.size(); ++i) EXPECT_NEAR((w.track[i] - w.track[i - 1]).norm(), 5, 1e-9);
 }
 
+TEST(QrmNavigator, LeavingThePlannedRouteIsAReroute) {
+  FakeWorld w{example()};
+  q::RelationalMap map = map_of(w.landmarks);
+  w.tool = {-15, -5};
+  FakeEye eye(w);
+  FakeArm arm(w);
+  const std::vector<q::LandmarkId> planned{0, 4, 3};  // not the map's route
+  const q::NavigationReport r = q::navigate(map, 3, eye, arm, {}, nullptr, planned);
+  EXPECT_EQ(r.ending, q::NavigationEnding::arrived) << r.reason;
+  EXPECT_EQ(r.reroutes, 1);
+  FakeWorld w2{example()};
+  w2.tool = {-15, -5};
+  FakeEye eye2(w2);
+  FakeArm arm2(w2);
+  q::RelationalMap map2 = map_of(w2.landmarks);
+  const std::vector<q::LandmarkId> right{0, 2, 1, 3};
+  EXPECT_EQ(q::navigate(map2, 3, eye2, arm2, {}, nullptr, right).reroutes, 0);
+}
+
 TEST(QrmNavigator, GoesRoundAMarbleInTheWayKeepingClear) {
   // The tool starts behind 0 as seen from 1: the straight way to 1 runs through 0.
   FakeWorld w{{{0, 0}, {120, 0}, {60, 90}}};
