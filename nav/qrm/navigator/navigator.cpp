@@ -52,7 +52,7 @@ const PanoramaSighting* find_sighting(const std::vector<PanoramaSighting>& sight
 // over the nearest other marble (cell_advantage), nearest the bearing among equals.
 std::optional<Vector2d> detour_step(const std::vector<Obstacle>& obstacles, LandmarkId target,
                                     const Vector2d& target_at, double step, double keep) {
-  if (const std::optional<Vector2d> p = path_step(obstacles, target, target_at, step, keep);
+  if (std::optional<Vector2d> p = path_step(obstacles, target, target_at, step, keep);
       p && step_allowed(obstacles, *p, keep)) {
     return p;
   }
