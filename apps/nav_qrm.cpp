@@ -74,7 +74,7 @@ void write_qrm_plot(const std::string& path, const sim::World& world, const rig:
     throw std::runtime_error(fmt::format("--plot {}: cannot write the image", path));
 }
 
-int one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
+int qrm_one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
   const auto check_id = [&](const char* option, std::int64_t id) {
     if (id < 0 || id >= std::ssize(world.objects)) {
       throw UsageError{
@@ -177,7 +177,7 @@ std::vector<std::unique_ptr<rig::Plan>> plans_for_pairs(const std::string& path,
   return plans;
 }
 
-int trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
+int qrm_trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
   const std::vector<std::unique_ptr<rig::Plan>> plans =
       a.pairs.empty() ? rig::draw_plans(system, world.objects.size(), *a.trials, a.seed)
                       : plans_for_pairs(a.pairs, system, world.objects.size());
@@ -250,7 +250,7 @@ int qrm_nav_command(const NavArgs& a) {
       world, settings, nullptr, [&](std::size_t done) { bar.update(static_cast<std::int64_t>(done)); });
   bar.clear();
   const rig::QrmSystem system(world, std::move(map), settings);
-  return a.from ? one_journey(a, world, system) : trials(a, world, system);
+  return a.from ? qrm_one_journey(a, world, system) : qrm_trials(a, world, system);
 }
 
 }  // namespace neopipe::apps

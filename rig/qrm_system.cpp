@@ -39,7 +39,7 @@ void check_marbles(const sim::World& world) {
   }
 }
 
-Ending ending_of(q::NavigationEnding e) {
+Ending qrm_ending(q::NavigationEnding e) {
   switch (e) {
     case q::NavigationEnding::arrived:
       return Ending::arrived;
@@ -172,7 +172,7 @@ Travel QrmSystem::travel(const Plan& plan, Equipment& equipment, Witness& witnes
   q::NavigationReport report =
       q::navigate(map, plan.goal, eye, equipment.arm, settings_.navigator, &relay, qrm_route(plan));
   Travel t;
-  t.ending = ending_of(report.ending);
+  t.ending = qrm_ending(report.ending);
   t.reason = report.reason;
   t.recoveries = report.reroutes;  // re-plans that left the path: QRM's recovery
   t.frames = report.frames;
