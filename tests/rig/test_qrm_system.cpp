@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -47,9 +48,10 @@ TEST(QrmSystem, TheTourBuildsAMapWhoseRngHoldsTheTrueOne) {
   // The map never loses a true state, so no true RNG edge is pruned.
   const auto truth = q::true_rng(w.objects);
   const q::RngEstimate estimate = q::estimate_rng(map);
-  for (const auto& [i, j] : truth) {
+  for (const auto& edge : truth) {
+    const auto [i, j] = edge;
     EXPECT_TRUE(std::any_of(estimate.edges.begin(), estimate.edges.end(),
-                            [&](const q::RngEdge& e) { return e.i == i && e.j == j; }))
+                            [&](const q::RngEdge& e) { return e.i == edge.first && e.j == edge.second; }))
         << i << "-" << j;
   }
 }

@@ -103,7 +103,8 @@ class Recorder final : public q::NavigationObserver {
 std::vector<Vector2d> example() {
   const std::vector<Vector2d> units{{0, 0}, {4, 0.5}, {1.5, 1.2}, {9, -1}, {6, 4.3}};
   std::vector<Vector2d> mm;
-  for (const Vector2d& p : units) mm.push_back(25 * p);
+  mm.reserve(units.size());
+  for (const Vector2d& p : units) mm.emplace_back(25 * p);
   return mm;
 }
 
