@@ -75,13 +75,19 @@ std::optional<Vector2d> detour_step(const std::vector<Obstacle>& obstacles, Land
   return best;
 }
 
-// A step around the marble nearest the tool, keeping its distance (a tangent, counter-clockwise,
-// or clockwise when that is not allowed): a look from elsewhere for a landmark it may hide.
+// A step around the marble nearest the tool, keeping its distance (a tangent, counter-clockwise
+// first), or turned outward from it by up to 90° where another marble bars the tangent: a look
+// from elsewhere for a landmark it may hide.
 std::optional<Vector2d> search_step(const std::vector<Obstacle>& obstacles, const Vector2d& nearest, double step,
                                     double keep) {
-  const Vector2d tangent = Vector2d(-nearest.y(), nearest.x()).normalized() * step;
-  for (const Vector2d& p : {tangent, Vector2d(-tangent)}) {
-    if (step_allowed(obstacles, p, keep)) return p;
+  const Vector2d out = -nearest.normalized();
+  const Vector2d left(-out.y(), out.x());
+  for (int k = 0; k <= 90 / kDirectionStepsDeg; ++k) {
+    const double a = k * kDirectionStepsDeg * kRadiansPerDegree;
+    for (const int side : {1, -1}) {
+      const Vector2d p = step * (std::cos(a) * side * left + std::sin(a) * out);
+      if (step_allowed(obstacles, p, keep)) return p;
+    }
   }
   return std::nullopt;
 }
