@@ -267,6 +267,11 @@ int trials(const NavArgs& a, const Setup& s) {
 CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
+  cmd->add_option("--system", a.system,
+                  "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
+                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first")
+      ->check(CLI::IsMember({"park-kender", "qrm"}))
+      ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
   cmd->add_option("--to", a.to, "Goal object id (one journey)");
@@ -322,11 +327,21 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--survey-csv", a.survey_csv,
                   "Write every object's surveyed position (what the map-maker believes) beside the true one: CSV "
                   "id,x,y,true_x,true_y,error");
+  cmd->add_option("--images", a.images, "qrm: imaging positions of the tour that builds the robot's map")
+      ->capture_default_str();
+  cmd->add_option("--k", a.k, "qrm: the k nearest landmarks of each image are fused into the map")
+      ->capture_default_str();
+  cmd->add_option("--pairs", a.pairs,
+                  "qrm: journeys between the pairs of a trials JSON (its journeys' from/to, e.g. Park & Kender's "
+                  "--trials --json) instead of --trials random draws, so the two systems meet the same pairs")
+      ->type_name("FILE");
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
 
 int nav_command(const NavArgs& a) {
+  if (a.system == "qrm") return qrm_nav_command(a);
+  if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {
     throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};

@@ -11,6 +11,7 @@
 namespace neopipe::apps {
 
 struct NavArgs {
+  std::string system = "park-kender";  ///< park-kender | qrm
   std::string world;
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
@@ -38,9 +39,14 @@ struct NavArgs {
   bool json = false;
   std::string plot;
   std::string video;
+  std::int64_t images = 30;  ///< qrm: imaging positions of the tour that builds the map
+  std::int64_t k = 18;       ///< qrm: the k nearest landmarks of an image are fused (spec qrm.md §9)
+  std::string pairs;         ///< qrm: journeys between the pairs of a trials JSON instead of random draws
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);
 int nav_command(const NavArgs& args);
+/// `neopipe nav --system qrm` (apps/nav_qrm.cpp).
+int qrm_nav_command(const NavArgs& args);
 
 }  // namespace neopipe::apps

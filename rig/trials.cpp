@@ -100,6 +100,7 @@ TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::
             t.commanded_travel = r.arm.commanded_travel;
             t.true_travel = r.arm.true_travel;
             t.reason = r.travel.reason;
+            t.details = r.travel.details;
             const auto wrong =
                 std::find_if(r.held.begin(), r.held.end(), [](const HeldLandmark& h) { return !h.correct; });
             if (wrong != r.held.end()) t.first_wrong_entry = wrong->entry;

@@ -5,6 +5,7 @@
 // runs with the same seed (another criterion, recovery off, another system) meet the same pairs
 // with the same noise.
 
+#include <any>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -38,6 +39,7 @@ struct TrialRecord {
   bool refused = false;                          ///< not attempted (Plan::refused): no outcome
   std::string reason;                            ///< the system's, when it stopped aware of a failure or refused
   std::optional<std::size_t> first_wrong_entry;  ///< the first entry that held a wrong object
+  std::any details;                              ///< the system's own report (Travel::details)
 };
 
 struct TrialsSummary {
