@@ -11,6 +11,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/map_plot.hpp"
 #include "apps/nav_video.hpp"
+#include "apps/outcome_table.hpp"
 #include "apps/progress.hpp"
 #include "apps/reliability_diagram.hpp"
 #include "nav/mapmaker/map_maker.hpp"
@@ -240,13 +241,7 @@ int trials(const NavArgs& a, const Setup& s) {
       "{:<20} {:>7} {:>8}  {}\n",
       n, a.world, s.world.objects.size(), a.cost, a.sigma_move, a.sigma_rot, a.no_recovery ? "off" : "on", a.seed,
       survey_line(s.survey), "OUTCOME", "COUNT", "RATE", "95% CI");
-  const auto row = [&](std::string_view name, std::int64_t count) {
-    const rig::Interval w = rig::wilson_interval(count, n);
-    std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,
-                             100.0 * static_cast<double>(count) / static_cast<double>(n), 100 * w.low, 100 * w.high);
-  };
-  for (const rig::Outcome o : rig::kOutcomes) row(rig::outcome_name(o), t.count(o));
-  row("reached the goal", t.reached());
+  print_outcome_rows(std::cout, t, n);
   if (a.min_reliability > 0) {
     std::cout << fmt::format("{:<20} {:>7}   of {} asked: routes forecast below R {} were not attempted\n", "refused",
                              t.refused, asked, a.min_reliability);

@@ -13,6 +13,7 @@
 
 #include "apps/cli_support.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/outcome_table.hpp"
 #include "apps/progress.hpp"
 #include "nav/qrm/rng.hpp"
 #include "pipeline/media/media.hpp"
@@ -201,13 +202,7 @@ int qrm_trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& 
       "seed {}\n\n{:<20} {:>7} {:>8}  {}\n",
       n, a.world, world.objects.size(), a.images, a.k, a.sigma_move, a.sigma_rot, a.seed, "OUTCOME", "COUNT", "RATE",
       "95% CI");
-  const auto row = [&](std::string_view name, std::int64_t count) {
-    const rig::Interval w = rig::wilson_interval(count, n);
-    std::cout << fmt::format("{:<20} {:>7} {:>7.2f}%  [{:.2f}%, {:.2f}%]\n", name, count,
-                             100.0 * static_cast<double>(count) / static_cast<double>(n), 100 * w.low, 100 * w.high);
-  };
-  for (const rig::Outcome o : rig::kOutcomes) row(rig::outcome_name(o), t.count(o));
-  row("reached the goal", t.reached());
+  print_outcome_rows(std::cout, t, n);
   std::cout << "\nthe navigator's endings:";
   for (const auto& [name, count] : j["qrm"]["endings"].items())
     std::cout << fmt::format(" {} {}", name, count.get<std::int64_t>());

@@ -15,6 +15,7 @@
 #include "nav/qrm/rng.hpp"
 #include "rig/outcome.hpp"
 #include "rig/qrm_imaging.hpp"
+#include "rig/reports.hpp"
 #include "rig/seeds.hpp"
 #include "sim/panorama.hpp"
 
@@ -192,16 +193,6 @@ const q::NavigationReport* qrm_report(const Travel& travel) {
 
 json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<Plan>>& plans, const TrialsSummary& t) {
   const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
-  json outcomes;
-  json rates;
-  json ci;
-  for (const Outcome o : kOutcomes) {
-    const std::string name(outcome_name(o));
-    outcomes[name] = t.count(o);
-    rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
-    const Interval w = wilson_interval(t.count(o), n);
-    ci[name] = {w.low, w.high};
-  }
   std::array<std::int64_t, q::kNavigationEndings> endings{};
   std::int64_t steps = 0;
   std::int64_t detours = 0;
@@ -240,36 +231,31 @@ json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<
   for (std::size_t e = 0; e < endings.size(); ++e) {
     own[std::string(q::navigation_ending_name(static_cast<q::NavigationEnding>(e)))] = endings[e];
   }
-  const Interval reached = wilson_interval(t.reached(), n);
   const QrmSettings& s = system.settings();
-  return {{"system", system.name()},
-          {"trials", std::ssize(t.trials)},
-          {"run", t.run()},
-          {"refused", t.refused},
-          {"outcomes", outcomes},
-          {"rates", rates},
-          {"ci95", ci},
-          {"reached_goal", t.reached()},
-          {"reached_goal_rate", static_cast<double>(t.reached()) / static_cast<double>(n)},
-          {"reached_goal_ci95", {reached.low, reached.high}},
-          {"frames", t.frames},
-          {"seconds", t.seconds},
-          {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
-          {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
-          {"qrm",
-           {{"endings", own},
-            {"steps", steps},
-            {"detours", detours},
-            {"reroutes", reroutes},
-            {"images_fused", images},
-            {"inconsistent_measurements", inconsistent},
-            {"images", s.images},
-            {"k", s.navigator.observation.nearest},
-            {"step_mm", s.navigator.step_mm},
-            {"fuse_every", s.navigator.fuse_every},
-            {"max_steps", s.navigator.max_steps},
-            {"map_landmarks", system.map().size()}}},
-          {"journeys", journeys}};
+  json report = {{"system", system.name()},
+                 {"trials", std::ssize(t.trials)},
+                 {"run", t.run()},
+                 {"refused", t.refused},
+                 {"frames", t.frames},
+                 {"seconds", t.seconds},
+                 {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
+                 {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
+                 {"qrm",
+                  {{"endings", own},
+                   {"steps", steps},
+                   {"detours", detours},
+                   {"reroutes", reroutes},
+                   {"images_fused", images},
+                   {"inconsistent_measurements", inconsistent},
+                   {"images", s.images},
+                   {"k", s.navigator.observation.nearest},
+                   {"step_mm", s.navigator.step_mm},
+                   {"fuse_every", s.navigator.fuse_every},
+                   {"max_steps", s.navigator.max_steps},
+                   {"map_landmarks", system.map().size()}}},
+                 {"journeys", journeys}};
+  report.update(outcome_tables_json(t));
+  return report;
 }
 
 }  // namespace neopipe::rig

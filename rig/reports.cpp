@@ -305,6 +305,28 @@ json steps_json(const mm::Route& route) {
   return steps;
 }
 
+json outcome_tables_json(const TrialsSummary& t) {
+  // Over the journeys run: a refused plan is not a failure, it is counted apart.
+  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
+  json outcomes;
+  json rates;
+  json ci;
+  for (const Outcome o : kOutcomes) {
+    const std::string name(outcome_name(o));
+    outcomes[name] = t.count(o);
+    rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
+    const Interval w = wilson_interval(t.count(o), n);
+    ci[name] = {w.low, w.high};
+  }
+  const Interval reached = wilson_interval(t.reached(), n);
+  return {{"outcomes", outcomes},
+          {"rates", rates},
+          {"ci95", ci},
+          {"reached_goal", t.reached()},
+          {"reached_goal_rate", static_cast<double>(t.reached()) / static_cast<double>(n)},
+          {"reached_goal_ci95", {reached.low, reached.high}}};
+}
+
 TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t trials,
                            const std::function<void(std::int64_t)>& progress) {
   if (trials < 1) throw RequestError(fmt::format("--trials {}: must be at least 1", trials));
@@ -327,17 +349,6 @@ TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t 
   double mean_planned_distance = 0;
   for (const auto& p : out.plans)
     if (p->refused.empty()) mean_planned_distance += p->planned_distance / static_cast<double>(n);
-  json outcomes;
-  json rates;
-  json ci;
-  for (const Outcome o : kOutcomes) {
-    const std::string name(outcome_name(o));
-    outcomes[name] = t.count(o);
-    rates[name] = static_cast<double>(t.count(o)) / static_cast<double>(n);
-    const Interval w = wilson_interval(t.count(o), n);
-    ci[name] = {w.low, w.high};
-  }
-  const Interval reached = wilson_interval(t.reached(), n);
   // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
   // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
   json journeys = json::array();
@@ -363,12 +374,6 @@ TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t 
               {"run", t.run()},
               {"refused", t.refused},
               {"min_reliability", a.min_reliability},
-              {"outcomes", outcomes},
-              {"rates", rates},
-              {"ci95", ci},
-              {"reached_goal", t.reached()},
-              {"reached_goal_rate", static_cast<double>(t.reached()) / static_cast<double>(n)},
-              {"reached_goal_ci95", {reached.low, reached.high}},
               {"frames", t.frames},
               {"seconds", t.seconds},
               {"frames_per_second", fps},
@@ -388,6 +393,7 @@ TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t 
               {"descriptions", a.descriptions},
               {"seed", a.seed},
               {"journeys", journeys}};
+  out.json.update(outcome_tables_json(t));
   return out;
 }
 

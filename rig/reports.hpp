@@ -94,6 +94,11 @@ struct NavSetup {
 /// option, WorldError and MapError for a world that cannot be navigated.
 NavSetup nav_setup(const NavRequest& request);
 
+/// The trials JSON's outcome tables, the same for every system: "outcomes" (counts), "rates" and
+/// "ci95" (Wilson 95 % intervals) over the journeys run, and "reached_goal", "reached_goal_rate",
+/// "reached_goal_ci95".
+nlohmann::json outcome_tables_json(const TrialsSummary& t);
+
 nlohmann::json survey_json(const Survey& survey);
 /// "TRAJP 47 -> 75": a step's kind and ends, for grouping failures by kind.
 std::string step_name(const nav::mapmaker::RouteStep& step);
