@@ -15,6 +15,7 @@
 #include "apps/progress.hpp"
 #include "apps/qrm_plot.hpp"
 #include "nav/qrm/composition.hpp"
+#include "nav/qrm/edc.hpp"
 #include "nav/qrm/operators.hpp"
 #include "nav/qrm/rng.hpp"
 #include "rig/qrm_build.hpp"
@@ -179,7 +180,7 @@ sim::World load_qrm_world(const std::string& path) {
     throw std::runtime_error(fmt::format("{}: {} marble{}; a relational map needs at least 3", path,
                                          world.objects.size(), world.objects.size() == 1 ? "" : "s"));
   }
-  if (const auto d = rig::first_degenerate_triple(world.objects)) {
+  if (const auto d = qrm::first_degenerate_triple(world.objects)) {
     throw std::runtime_error(path + ": " + qrm::DegenerateTripleError((*d)[0], (*d)[1], (*d)[2]).what());
   }
   return world;

@@ -33,15 +33,7 @@ std::vector<Eigen::Vector2d> landmarks(std::mt19937_64& rng, int n) {
     std::vector<Eigen::Vector2d> p;
     p.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) p.emplace_back(u(rng), u(rng));
-    bool ok = true;
-    for (int i = 0; i < n && ok; ++i) {
-      for (int j = 0; j < n && ok; ++j) {
-        for (int k = 0; k < n && ok; ++k) {
-          if (i != j && j != k && i != k) ok = qrm::classify(p[i], p[j], p[k]) != 0;
-        }
-      }
-    }
-    if (ok) return p;
+    if (!qrm::first_degenerate_triple(p)) return p;
   }
 }
 

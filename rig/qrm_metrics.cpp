@@ -105,27 +105,11 @@ QrmMetrics qrm_metrics(const qrm::RelationalMap& map, std::span<const Eigen::Vec
   return QrmTruth(truth).metrics(map);
 }
 
-std::optional<std::array<std::size_t, 3>> first_degenerate_triple(std::span<const Eigen::Vector2d> points) {
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = i + 1; j < n; ++j) {
-      for (std::size_t k = j + 1; k < n; ++k) {
-        const std::array<std::array<std::size_t, 3>, 6> orders{
-            {{i, j, k}, {j, k, i}, {k, i, j}, {j, i, k}, {k, j, i}, {i, k, j}}};
-        for (const auto& [p, q, r] : orders) {
-          if (qrm::classify(points[p], points[q], points[r]) == 0) return std::array{i, j, k};
-        }
-      }
-    }
-  }
-  return std::nullopt;
-}
-
 sim::World generate_qrm_world(sim::WorldRequest request) {
   constexpr int kMaxDraws = 1000;
   for (int draw = 0; draw < kMaxDraws; ++draw, ++request.seed) {
     sim::World world = sim::generate_world(request);
-    if (!first_degenerate_triple(world.objects)) return world;
+    if (!qrm::first_degenerate_triple(world.objects)) return world;
   }
   throw sim::WorldError("qrm world: every one of 1000 draws holds a degenerate triple");
 }

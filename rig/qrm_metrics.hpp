@@ -75,10 +75,6 @@ class QrmTruth {
 /// QrmTruth(truth).metrics(map).
 QrmMetrics qrm_metrics(const nav::qrm::RelationalMap& map, std::span<const Eigen::Vector2d> truth);
 
-/// The first degenerate triple (i < j < k) of a world (spec §2: some e within 1e-9 |AB|^2 of zero
-/// for one of its orders), or none. The simulator resamples such worlds; a user's file is an error.
-std::optional<std::array<std::size_t, 3>> first_degenerate_triple(std::span<const Eigen::Vector2d> points);
-
 /// generate_world(request), redrawn with the next seed (request.seed + 1, + 2, ...) while it holds a
 /// degenerate triple (spec §2). Throws sim::WorldError as generate_world does, or after 1000 draws.
 sim::World generate_qrm_world(sim::WorldRequest request);

@@ -137,4 +137,20 @@ StateSet adjacent(State s) {
   return adjacency()[s];
 }
 
+std::optional<std::array<std::size_t, 3>> first_degenerate_triple(std::span<const Eigen::Vector2d> points) {
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const std::array<std::array<std::size_t, 3>, 6> orders{
+            {{i, j, k}, {j, k, i}, {k, i, j}, {j, i, k}, {k, j, i}, {i, k, j}}};
+        for (const auto& [p, q, r] : orders) {
+          if (classify(points[p], points[q], points[r]) == 0) return std::array{i, j, k};
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace neopipe::nav::qrm

@@ -4,7 +4,10 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <span>
 
 #include "nav/qrm/state_set.hpp"
 
@@ -19,6 +22,10 @@ inline constexpr double kDegenerateTolerance = 1e-9;
 
 /// The state of AB:C, or 0 when some |e_i| <= 1e-9 |AB|^2 (C on a boundary, or A = B).
 State classify(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+/// The first degenerate triple (i < j < k) of `points` (classify() is 0 for one of its six orders),
+/// or none. The simulator resamples such worlds; a user's world file holding one is an error.
+std::optional<std::array<std::size_t, 3>> first_degenerate_triple(std::span<const Eigen::Vector2d> points);
 
 /// The signs (+1, -1) of e1..e6 everywhere inside region `s` (1..20): the strict inequalities that
 /// define it, used by the composition and measurement problems.

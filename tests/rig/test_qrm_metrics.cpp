@@ -126,17 +126,17 @@ TEST(QrmMetrics, RngComparison) {
 
 TEST(QrmMetrics, DegenerateTriples) {
   const std::vector<Eigen::Vector2d> line{{0, 0}, {0.7, 3}, {2, 0}, {4, 0}};
-  const auto d = first_degenerate_triple(line);
+  const auto d = qrm::first_degenerate_triple(line);
   ASSERT_TRUE(d.has_value());
   EXPECT_EQ(*d, (std::array<std::size_t, 3>{0, 2, 3}));
-  EXPECT_FALSE(first_degenerate_triple(kPoints).has_value());
+  EXPECT_FALSE(qrm::first_degenerate_triple(kPoints).has_value());
   EXPECT_THROW(qrm_metrics(empty_map(4), line), qrm::DegenerateTripleError);
   sim::WorldRequest request;
   request.objects = 20;
   request.seed = 4;
   const sim::World w = generate_qrm_world(request);
   EXPECT_EQ(w.objects.size(), 20U);
-  EXPECT_FALSE(first_degenerate_triple(w.objects).has_value());
+  EXPECT_FALSE(qrm::first_degenerate_triple(w.objects).has_value());
 }
 
 }  // namespace
