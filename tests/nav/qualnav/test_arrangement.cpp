@@ -59,6 +59,17 @@ TEST(QualnavArrangement, PaperCountsInGeneralPosition) {
   }
 }
 
+// Fourteen landmarks: 3263 regions by the formula, by the cells found and by Euler's formula.
+TEST(QualnavArrangement, FourteenRandomLandmarks) {
+  const auto points = random_points(14, 1414);
+  const qn::Arrangement a(iota_ids(14), points);
+  EXPECT_EQ(a.region_count(), 3263U);
+  EXPECT_EQ(qn::general_position_region_count(14), 3263U);
+  const qn::OrientationRegions regions(a);
+  EXPECT_EQ(regions.regions().size(), 3263U);
+  EXPECT_EQ(regions.euler_region_count(), 3263U);
+}
+
 TEST(QualnavArrangement, SquareCornersGiveSixteen) {
   const std::vector<Vector2d> square{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
   const qn::Arrangement a(iota_ids(4), square);
