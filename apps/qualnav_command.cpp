@@ -66,7 +66,7 @@ std::vector<qn::LandmarkId> qualnav_landmark_ids(const QualnavArgs& a, const sim
   return ids;
 }
 
-json crossing_json(const qn::Arrangement& arrangement, const qn::LineCrossing& c) {
+json qualnav_crossing_json(const qn::Arrangement& arrangement, const qn::LineCrossing& c) {
   json lines = json::array();
   for (const std::size_t i : c.lines) {
     const qn::LandmarkPair& p = arrangement.pairs()[i];
@@ -235,7 +235,7 @@ void write_regions_svg(const sim::World& world, const qn::Arrangement& a, const 
   if (!file) throw std::runtime_error(fmt::format("{}: cannot write the plot", path));
 }
 
-int regions_command(const QualnavArgs& a) {
+int qualnav_regions_command(const QualnavArgs& a) {
   if (!a.plot.empty() && !a.plot.ends_with(".png") && !a.plot.ends_with(".svg")) {
     throw UsageError{fmt::format("--plot {}: the picture must be a .png or .svg file", a.plot)};
   }
@@ -267,7 +267,7 @@ int regions_command(const QualnavArgs& a) {
   }
   if (a.json) {
     json crossings = json::array();
-    for (const qn::LineCrossing& c : arr.crossings()) crossings.push_back(crossing_json(arr, c));
+    for (const qn::LineCrossing& c : arr.crossings()) crossings.push_back(qualnav_crossing_json(arr, c));
     const json out{{"landmarks", ids.size()},
                    {"ids", ids},
                    {"lines", arr.lines().size()},
@@ -295,7 +295,7 @@ int regions_command(const QualnavArgs& a) {
   return kExitOk;
 }
 
-int productions_command(const QualnavArgs& a) {
+int qualnav_productions_command(const QualnavArgs& a) {
   const std::vector<qn::ProductionCell> cells = qn::production_table();
   if (a.json) {
     json orders = json::array();
@@ -360,8 +360,8 @@ CLI::App* add_qualnav_command(CLI::App& app, QualnavArgs& a) {
 }
 
 int qualnav_command(const CLI::App& qualnav, const QualnavArgs& args) {
-  if (qualnav.got_subcommand("regions")) return regions_command(args);
-  return productions_command(args);
+  if (qualnav.got_subcommand("regions")) return qualnav_regions_command(args);
+  return qualnav_productions_command(args);
 }
 
 }  // namespace neopipe::apps
