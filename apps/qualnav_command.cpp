@@ -171,8 +171,8 @@ void write_regions_png(const sim::World& world, const qn::Arrangement& a, const 
     if (!x.landmark) cv::circle(image, pt(x.point), x.multiplicity() > 2 ? 4 : 2, kChartInk, cv::FILLED, cv::LINE_AA);
   }
   // Every marble of the world, the landmarks of the arrangement in red with their ids.
-  for (std::size_t i = 0; i < world.objects.size(); ++i) {
-    cv::circle(image, pt(world.objects[i]), 3, cv::Scalar(170, 170, 170), cv::FILLED, cv::LINE_AA);
+  for (const Eigen::Vector2d& marble : world.objects) {
+    cv::circle(image, pt(marble), 3, cv::Scalar(170, 170, 170), cv::FILLED, cv::LINE_AA);
   }
   for (std::size_t k = 0; k < a.ids().size(); ++k) {
     const cv::Point at = pt(a.positions()[k]);
@@ -243,13 +243,14 @@ int qualnav_regions_command(const QualnavArgs& a) {
   const std::vector<qn::LandmarkId> ids = qualnav_landmark_ids(a, world);
   if (ids.size() > kMaxRegionLandmarks) {
     // n landmarks and 3·C(n,4) other crossings in general position.
-    const double n = static_cast<double>(ids.size());
+    const auto n = static_cast<double>(ids.size());
     throw std::runtime_error(
         fmt::format("{}: {} landmarks would give about {:.0f} crossings; choose at most {} with "
                     "--landmarks",
                     a.world, ids.size(), n + n * (n - 1) * (n - 2) * (n - 3) / 8, kMaxRegionLandmarks));
   }
   std::vector<Eigen::Vector2d> positions;
+  positions.reserve(ids.size());
   for (const qn::LandmarkId id : ids) positions.push_back(world.objects[id]);
   std::optional<qn::Arrangement> arrangement;
   try {

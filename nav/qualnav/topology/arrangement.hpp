@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -83,7 +84,9 @@ struct RegionAdjacency {
   std::size_t second = 0;
   std::size_t line = 0;  ///< the LPB between them
   friend bool operator==(const RegionAdjacency&, const RegionAdjacency&) = default;
-  friend auto operator<=>(const RegionAdjacency&, const RegionAdjacency&) = default;
+  friend bool operator<(const RegionAdjacency& a, const RegionAdjacency& b) {
+    return std::tie(a.first, a.second, a.line) < std::tie(b.first, b.second, b.line);
+  }
 };
 
 class OrientationRegions {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace neopipe::nav::qualnav {
@@ -20,7 +21,9 @@ struct LandmarkPair {
   LandmarkId first = 0;   ///< L1
   LandmarkId second = 0;  ///< L2
   friend bool operator==(const LandmarkPair&, const LandmarkPair&) = default;
-  friend auto operator<=>(const LandmarkPair&, const LandmarkPair&) = default;
+  friend bool operator<(const LandmarkPair& a, const LandmarkPair& b) {
+    return std::tie(a.first, a.second) < std::tie(b.first, b.second);
+  }
 };
 
 /// The part of LPB(L1, L2) a point on its line lies in.

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -125,4 +126,19 @@ TEST(QualnavProductions, MultiLandmarkOrderCutsTheWidestGap) {
   const std::vector<qn::Sighting> twice{{0, 0}, {0, 1}};
   EXPECT_THROW((void)qn::left_to_right_order(twice), std::invalid_argument);
   EXPECT_TRUE(qn::left_to_right_order({})->empty());
+}
+
+// [P Q] with P left of Q is the LPB side [P Q] of §4: the order puts first the landmark whose pair
+// orientation (first, second) is +1, for any two bearings less than 180° apart.
+TEST(QualnavProductions, LeftOfIsOrientationPlusOne) {
+  for (int i = 0; i < 3600; ++i) {
+    const double b1 = i * 0.1 * kDeg;
+    const double b2 = b1 + (7 + (i * 37) % 706) * 0.5 * kDeg;  // 3.5° to 356° counter-clockwise of b1
+    if (std::abs(std::abs(std::remainder(b1 - b2, 2 * std::numbers::pi)) - std::numbers::pi) < 1e-9) continue;
+    const std::vector<qn::Sighting> seen{{0, b1}, {1, b2}};
+    const auto order = qn::left_to_right_order(seen);
+    ASSERT_TRUE(order);
+    const int o = qn::orientation_from_bearings(b1, b2);
+    EXPECT_EQ(order->front(), o > 0 ? 0U : 1U) << b1 / kDeg << " " << b2 / kDeg;
+  }
 }
