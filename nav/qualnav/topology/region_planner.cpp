@@ -76,6 +76,23 @@ std::optional<std::vector<std::size_t>> breadth_first_plan(const RegionGraph& gr
 
 }  // namespace
 
+PairSigns to_pair_signs(std::span<const LandmarkPair> pairs, const SignVector& signs) {
+  if (pairs.size() != signs.size()) {
+    throw std::invalid_argument("to_pair_signs: " + std::to_string(signs.size()) + " signs for " +
+                                std::to_string(pairs.size()) + " pairs");
+  }
+  PairSigns out;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const LandmarkPair& p = pairs[i];
+    if (p.first < p.second) {
+      out[p] = signs[i];
+    } else {
+      out[{p.second, p.first}] = -signs[i];
+    }
+  }
+  return out;
+}
+
 RegionObservation observe_regions(std::span<const Sighting> seen, std::optional<double> crossing_heading) {
   RegionObservation o;
   o.bearings.assign(seen.begin(), seen.end());

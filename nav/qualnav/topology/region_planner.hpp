@@ -26,6 +26,10 @@ namespace neopipe::nav::qualnav {
 /// The sign of each pair a viewframe sees; pairs are keyed with first < second.
 using PairSigns = std::map<LandmarkPair, int>;
 
+/// A sign vector over `pairs` as PairSigns: each pair keyed first < second, its sign flipped when
+/// the pair was given the other way round. Sizes that differ are std::invalid_argument.
+PairSigns to_pair_signs(std::span<const LandmarkPair> pairs, const SignVector& signs);
+
 /// One remembered viewframe, as the planner needs it.
 struct RegionObservation {
   PairSigns signs;

@@ -10,6 +10,7 @@
 #include <tuple>
 #include <vector>
 
+#include "nav/qualnav/topology/arrangement.hpp"
 #include "nav/qualnav/topology/region_planner.hpp"
 
 namespace {
@@ -235,4 +236,36 @@ TEST(QualnavRegionPlanner, FurthestShortcutAlongAPlan) {
   const auto furthest = qn::furthest_shortcut(g, *plan, 0, panorama(marbles, {5, 0}));
   ASSERT_TRUE(furthest);
   EXPECT_GE(*furthest, 1U);
+}
+
+// A panorama's observation and the arrangement agree on every pair at random observers; a walk's
+// nodes are orientation regions of the arrangement; a fine walk mostly crosses one LPB at a time.
+TEST(QualnavRegionPlanner, ObservationsAreRegionsOfTheArrangement) {
+  const std::vector<Vector2d> marbles{{120, 80}, {400, 150}, {260, 420}, {90, 330}, {330, 300}};
+  const std::vector<qn::LandmarkId> ids{0, 1, 2, 3, 4};
+  const qn::Arrangement arrangement(ids, marbles);
+  const qn::OrientationRegions regions(arrangement);
+  std::vector<qn::RegionObservation> walk;
+  for (double t = 0; t <= 1.0; t += 0.002)
+    walk.push_back(qn::observe_regions(panorama(marbles, {20 + 460 * t, 40 + 400 * t * t})));
+  const qn::RegionGraph g(walk);
+  for (const qn::RegionNode& node : g.nodes()) {
+    bool found = false;
+    for (const qn::OrientationRegion& r : regions.regions())
+      found |= qn::to_pair_signs(arrangement.pairs(), r.signs) == node.signs;
+    EXPECT_TRUE(found);
+  }
+  std::size_t crossings = 0;
+  for (std::size_t i = 0; i < g.nodes().size(); ++i) {
+    for (const qn::RegionEdge& e : g.nodes()[i].edges) {
+      std::size_t differ = 0;
+      for (const auto& [pair, sign] : g.nodes()[i].signs) differ += g.nodes()[e.to].signs.at(pair) != sign;
+      EXPECT_GE(differ, 1U);
+      crossings += differ == 1;
+    }
+  }
+  EXPECT_GE(g.nodes().size(), 5U);
+  EXPECT_GT(crossings, 0U);
+  const std::vector<qn::LandmarkPair> reversed{{1, 0}};
+  EXPECT_EQ(qn::to_pair_signs(reversed, {1}).at({0, 1}), -1);
 }
