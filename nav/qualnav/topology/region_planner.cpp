@@ -84,10 +84,11 @@ PairSigns to_pair_signs(std::span<const LandmarkPair> pairs, const SignVector& s
   PairSigns out;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const LandmarkPair& p = pairs[i];
+    const int sign = (signs[i] > 0) - (signs[i] < 0);
     if (p.first < p.second) {
-      out[p] = signs[i];
+      out[p] = sign;
     } else {
-      out[{p.second, p.first}] = -signs[i];
+      out[{p.second, p.first}] = -sign;
     }
   }
   return out;
