@@ -267,14 +267,19 @@ int qualnav_regions_command(const QualnavArgs& a) {
     }
   }
   if (a.json) {
-    json crossings = json::array();
-    for (const qn::LineCrossing& c : arr.crossings()) crossings.push_back(qualnav_crossing_json(arr, c));
-    const json out{{"landmarks", ids.size()},
-                   {"ids", ids},
-                   {"lines", arr.lines().size()},
-                   {"regions", arr.region_count()},
-                   {"crossings", crossings}};
-    std::cout << out.dump() << '\n';
+    // Streamed a crossing at a time: sixty landmarks have 1.5 million, too many for one JSON tree.
+    std::string out = fmt::format(R"({{"landmarks":{},"ids":{},"lines":{},"regions":{},"crossings":[)", ids.size(),
+                                  json(ids).dump(), arr.lines().size(), arr.region_count());
+    bool first = true;
+    for (const qn::LineCrossing& c : arr.crossings()) {
+      out += (first ? "" : ",") + qualnav_crossing_json(arr, c).dump();
+      first = false;
+      if (out.size() > (1U << 20U)) {
+        std::cout << out;
+        out.clear();
+      }
+    }
+    std::cout << out << "]}\n";
     return kExitOk;
   }
   std::size_t beyond_landmarks = 0;
