@@ -96,13 +96,16 @@ Arrangement::Arrangement(std::span<const LandmarkId> ids, std::span<const Eigen:
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) ends[line_of[i][j]] = {i, j};
   }
+  // Lines through one landmark meet only there; elsewhere two crossings close together that would
+  // put two such lines through one point are distinct (a nearly collinear triple), not one.
+  const auto shares_landmark = [&](std::size_t a, std::size_t b) {
+    return a != b && (ends[a].first == ends[b].first || ends[a].first == ends[b].second ||
+                      ends[a].second == ends[b].first || ends[a].second == ends[b].second);
+  };
   for (std::size_t a = 0; a < line_count; ++a) {
     const Eigen::Vector2d da = lines_[a].to - lines_[a].from;
     for (std::size_t b = a + 1; b < line_count; ++b) {
-      if (ends[a].first == ends[b].first || ends[a].first == ends[b].second || ends[a].second == ends[b].first ||
-          ends[a].second == ends[b].second) {
-        continue;
-      }
+      if (shares_landmark(a, b)) continue;
       const Eigen::Vector2d db = lines_[b].to - lines_[b].from;
       const double denominator = arrangement_cross(da, db);
       if (std::abs(denominator) <= kCollinearSine * da.norm() * db.norm()) continue;  // parallel
@@ -122,13 +125,19 @@ Arrangement::Arrangement(std::span<const LandmarkId> ids, std::span<const Eigen:
   std::sort(candidates.begin(), candidates.end(), [](const CrossingCandidate& p, const CrossingCandidate& q) {
     return p.point.x() != q.point.x() ? p.point.x() < q.point.x() : p.point.y() < q.point.y();
   });
+  const auto fits = [&](const std::set<std::size_t>& through, const CrossingCandidate& c) {
+    return std::none_of(through.begin(), through.end(), [&](std::size_t line) {
+      return shares_landmark(line, c.line_a) || shares_landmark(line, c.line_b);
+    });
+  };
   std::vector<bool> taken(candidates.size(), false);
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (taken[i]) continue;
     std::set<std::size_t> through{candidates[i].line_a, candidates[i].line_b};
     for (std::size_t k = i + 1; k < candidates.size() && candidates[k].point.x() - candidates[i].point.x() <= merge;
          ++k) {
-      if (!taken[k] && std::abs(candidates[k].point.y() - candidates[i].point.y()) <= merge) {
+      if (!taken[k] && std::abs(candidates[k].point.y() - candidates[i].point.y()) <= merge &&
+          fits(through, candidates[k])) {
         taken[k] = true;
         through.insert(candidates[k].line_a);
         through.insert(candidates[k].line_b);

@@ -162,6 +162,24 @@ TEST(QualnavArrangement, RandomWorldsAgreeWithIndependentCounts) {
   EXPECT_GE(parallel, 1) << "the snapped worlds should hold parallel LPBs";
 }
 
+// A nearly collinear triple (sine 1e-8, above the collinearity threshold): near A its two lines run
+// 1e-7 mm apart, so a line across them there makes two crossings closer than the merge distance.
+// They are two (lines through A meet only at A), and the counts stay those of general position.
+TEST(QualnavArrangement, NearlyCollinearTripleKeepsItsCrossingsApart) {
+  const std::vector<Vector2d> points{{0, 0}, {100, 1e-6}, {200, 0}, {10, 50}, {10.0001, -80}};
+  const qn::Arrangement a(iota_ids(5), points);
+  EXPECT_EQ(a.crossings().size(), 5U + 3U * 5U);
+  for (const qn::LineCrossing& c : a.crossings()) {
+    if (!c.landmark) {
+      EXPECT_EQ(c.multiplicity(), 2U) << c.point.transpose();
+    }
+  }
+  EXPECT_EQ(a.region_count(), 41U);
+  const qn::OrientationRegions regions(a);
+  EXPECT_EQ(regions.regions().size(), 41U);
+  EXPECT_EQ(regions.euler_region_count(), 41U);
+}
+
 TEST(QualnavArrangement, TwoLandmarksMakeTwoRegions) {
   const std::vector<Vector2d> two{{0, 0}, {10, 0}};
   const qn::Arrangement a(iota_ids(2), two);
