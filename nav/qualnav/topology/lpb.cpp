@@ -1,5 +1,6 @@
 #include "nav/qualnav/topology/lpb.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -50,6 +51,13 @@ LpbPart part_of_line(const Eigen::Vector2d& l1, const Eigen::Vector2d& l2, const
   if (t < 0) return LpbPart::l;
   if (t > 1) return LpbPart::r;
   return LpbPart::b;
+}
+
+LpbPart classify_crossing(double bearing1_before, double bearing2_before, double range1_before, double range2_before) {
+  const double theta = pan_angle(bearing1_before, bearing2_before);
+  const double separation = std::min(theta, 2 * std::numbers::pi - theta);
+  if (separation > std::numbers::pi / 2) return LpbPart::b;
+  return range1_before < range2_before ? LpbPart::l : LpbPart::r;
 }
 
 SignVector sign_vector(std::span<const Eigen::Vector2d> landmarks, std::span<const LandmarkPair> pairs,

@@ -53,6 +53,11 @@ int orientation_from_positions(const Eigen::Vector2d& l1, const Eigen::Vector2d&
 /// t = (P − L1)·(L2 − L1)/|L2 − L1|²: l for t < 0, r for t > 1, else b. L1 == L2 is invalid_argument.
 LpbPart part_of_line(const Eigen::Vector2d& l1, const Eigen::Vector2d& l2, const Eigen::Vector2d& on_line);
 
+/// The part of LPB(L1, L2) a crossing went through, the crossing seen as a sign flip between two
+/// frames (spec §4 Decision): b if the pair's separation in the frame before the flip exceeds 90°,
+/// else l if L1 was nearer (range1 < range2), else r. Bearings in radians, ranges in any one unit.
+LpbPart classify_crossing(double bearing1_before, double bearing2_before, double range1_before, double range2_before);
+
 /// One orientation per pair: +1, 0 or −1.
 using SignVector = std::vector<std::int8_t>;
 

@@ -300,12 +300,14 @@ RegionShortcut shortcut_to(const RegionNode& target, std::span<const Sighting> v
     const bool first_left = position(p.first) < position(p.second);
     const LandmarkId left = first_left ? p.first : p.second;
     const LandmarkId right = first_left ? p.second : p.first;
-    const double apart = std::abs(wrap_heading(*bearing_in(view, left) - *bearing_in(view, right)));
+    // §4's crossing rule on the view; l beyond the left landmark is the specifier l[P Q].
     Specifier kind = Specifier::b;
     const auto r_left = ranges.find(left);
     const auto r_right = ranges.find(right);
-    if (apart <= std::numbers::pi / 2 && r_left != ranges.end() && r_right != ranges.end()) {
-      kind = r_left->second < r_right->second ? Specifier::l : Specifier::r;  // beyond the nearer one
+    if (r_left != ranges.end() && r_right != ranges.end()) {
+      const LpbPart part =
+          classify_crossing(*bearing_in(view, left), *bearing_in(view, right), r_left->second, r_right->second);
+      kind = part == LpbPart::b ? Specifier::b : part == LpbPart::l ? Specifier::l : Specifier::r;
     }
     s.specifiers.push_back({kind, left, right});
   }

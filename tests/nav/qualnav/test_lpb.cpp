@@ -89,3 +89,13 @@ TEST(QualnavLpb, SignVectorsOverPairs) {
   const std::vector<qn::LandmarkPair> beyond{{0, 3}};
   EXPECT_THROW((void)qn::sign_vector(marbles, beyond, inside), std::out_of_range);
 }
+
+// §4's Decision: b when the pair was more than 90° apart before the flip, else beyond the nearer.
+TEST(QualnavLpb, CrossingTypes) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  EXPECT_EQ(qn::classify_crossing(100 * kDeg, -10 * kDeg, 50, 40), qn::LpbPart::b);  // 110° apart
+  EXPECT_EQ(qn::classify_crossing(350 * kDeg, 250 * kDeg, 50, 40), qn::LpbPart::b);  // 100° the other way
+  EXPECT_EQ(qn::classify_crossing(80 * kDeg, 0, 30, 40), qn::LpbPart::l);            // L1 nearer
+  EXPECT_EQ(qn::classify_crossing(80 * kDeg, 0, 50, 40), qn::LpbPart::r);            // L2 nearer
+  EXPECT_EQ(qn::classify_crossing(10 * kDeg, 300 * kDeg, 30, 40), qn::LpbPart::l);   // 70° across 0°
+}
