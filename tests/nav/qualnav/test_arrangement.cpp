@@ -129,7 +129,7 @@ TEST(QualnavArrangement, RandomWorldsAgreeWithIndependentCounts) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-500, 1000);
     std::set<std::size_t> hit;
-    for (int i = 0; i < 20000; ++i) {
+    for (int i = 0; i < 5000; ++i) {
       const Vector2d p(u(rng), u(rng));
       const auto r = regions.region_of(p);
       ASSERT_TRUE(r) << "seed " << seed << ": " << p.transpose() << " in no region";
