@@ -8,6 +8,7 @@
 
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
+#include "apps/compare_command.hpp"
 #include "apps/cli_support.hpp"
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
@@ -66,6 +67,8 @@ int run_main(int argc, char** argv) {
   CLI::App* qrm = add_qrm_command(app, qrm_args);
   QualnavArgs qualnav_args;
   CLI::App* qualnav = add_qualnav_command(app, qualnav_args);
+  CompareArgs compare_args;
+  CLI::App* compare = add_compare_command(app, compare_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -73,7 +76,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav, compare; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -99,6 +102,7 @@ int run_main(int argc, char** argv) {
   if (map_stats->parsed()) return guarded("map stats", [&] { return map_stats_command(map_stats_args); });
   if (map->parsed()) return guarded("map", [&] { return map_command(map_args); });
   if (nav->parsed()) return guarded("nav", [&] { return nav_command(nav_args); });
+  if (compare->parsed()) return guarded("compare", [&] { return compare_command(compare_args); });
   if (qrm->parsed()) {
     const auto subs = qrm->get_subcommands();
     return guarded("qrm " + subs.front()->get_name(), [&] { return qrm_command(*qrm, qrm_args); });

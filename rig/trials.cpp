@@ -99,6 +99,7 @@ TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::
             t.frames = r.frames;
             t.commanded_travel = r.arm.commanded_travel;
             t.true_travel = r.arm.true_travel;
+            if (r.arm.track.size() > 1) t.displacement = (r.arm.track.back() - r.arm.track.front()).norm();
             t.reason = r.travel.reason;
             t.details = r.travel.details;
             const auto wrong =

@@ -35,6 +35,7 @@ struct TrialRecord {
   std::int64_t frames = 0;
   double commanded_travel = 0;
   double true_travel = 0;
+  double displacement = 0;  ///< mm from where the tool started to where it ended, straight, as the truth has it
   double planned_reliability = 1;
   bool refused = false;                          ///< not attempted (Plan::refused): no outcome
   std::string reason;                            ///< the system's, when it stopped aware of a failure or refused

@@ -9,38 +9,24 @@ namespace neopipe::nav::qrm {
 
 RelationalMap::RelationalMap(const CompositionTable& table) : table_(&table) {}
 
-void RelationalMap::add_landmark(LandmarkId id) {
-  if (index_.contains(id)) throw std::invalid_argument("landmark " + std::to_string(id) + " is already in the map");
-  const int k = static_cast<int>(ids_.size());
-  ids_.push_back(id);
-  index_.emplace(id, k);
-  if (ids_.size() > capacity_) {
-    capacity_ = std::max<std::size_t>(8, 2 * capacity_);
-    rebuild_slots();
-  }
-  // The new landmark is the largest index, so its triples are {i < j < k}.
-  const std::size_t n = capacity_;
-  for (int i = 0; i < k; ++i) {
-    for (int j = i + 1; j < k; ++j) {
-      triple_base_[(static_cast<std::size_t>(i) * n + j) * n + k] = static_cast<std::uint32_t>(masks_.size());
-      masks_.insert(masks_.end(), 3, StateSet::kAllMask);
-    }
-  }
+namespace {
+
+// The unordered triples {i < j < k} in the order landmarks join the map (all of k's after all of
+// k - 1's): C(k, 3) + C(j, 2) + i, the combinatorial number system. A closed form, so a read
+// touches no index table, and a map of any size is one flat array of masks.
+std::size_t triple_rank(std::size_t i, std::size_t j, std::size_t k) {
+  return k * (k - 1) * (k - 2) / 6 + j * (j - 1) / 2 + i;
 }
 
-void RelationalMap::rebuild_slots() {
-  // Re-indexes the existing triples in a larger cube; their masks stay where they are.
-  const std::size_t old_n = triple_base_.empty() ? 0 : capacity_ / 2;
-  std::vector<std::uint32_t> base(capacity_ * capacity_ * capacity_, 0);
-  const std::size_t existing = ids_.size() - 1;
-  for (std::size_t i = 0; i < existing; ++i) {
-    for (std::size_t j = i + 1; j < existing; ++j) {
-      for (std::size_t k = j + 1; k < existing; ++k) {
-        base[(i * capacity_ + j) * capacity_ + k] = triple_base_[(i * old_n + j) * old_n + k];
-      }
-    }
-  }
-  triple_base_ = std::move(base);
+}  // namespace
+
+void RelationalMap::add_landmark(LandmarkId id) {
+  if (index_.contains(id)) throw std::invalid_argument("landmark " + std::to_string(id) + " is already in the map");
+  const std::size_t k = ids_.size();
+  ids_.push_back(id);
+  index_.emplace(id, static_cast<int>(k));
+  // The new landmark is the largest index: its triples {i < j < k} come last, each unknown.
+  masks_.resize(3 * triple_rank(0, 0, k + 1), StateSet::kAllMask);
 }
 
 int RelationalMap::index_of(LandmarkId id) const {
@@ -69,8 +55,10 @@ RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
     which = 2;
     inverse = !inverse;
   }
-  const std::size_t n = capacity_;
-  return {triple_base_[(static_cast<std::size_t>(x) * n + y) * n + z] + which, inverse};
+  return {static_cast<std::uint32_t>(
+              3 * triple_rank(static_cast<std::size_t>(x), static_cast<std::size_t>(y), static_cast<std::size_t>(z)) +
+              which),
+          inverse};
 }
 
 StateSet RelationalMap::read(int p, int q, int r) const {

@@ -64,16 +64,12 @@ class RelationalMap {
   /// false when the restriction empties the relation.
   bool restrict(int a, int b, int c, StateSet states);
   bool process(const Triple& t);
-  void rebuild_slots();
 
   const CompositionTable* table_;
   std::vector<LandmarkId> ids_;
   std::unordered_map<LandmarkId, int> index_;
-  /// Three masks per unordered triple {i < j < k}: ij:k, jk:i, ki:j.
+  /// Three masks per unordered triple {i < j < k}: ij:k, jk:i, ki:j, the triples by rank.
   std::vector<StateSet::Mask> masks_;
-  /// First mask of each unordered triple, by the triple's sorted indices (a dense cube, i < j < k).
-  std::vector<std::uint32_t> triple_base_;
-  std::size_t capacity_ = 0;  ///< side of the cube
   int inconsistencies_ = 0;
   // Scratch of one fuse, kept to reuse its memory.
   std::vector<std::pair<std::uint32_t, StateSet::Mask>> journal_;

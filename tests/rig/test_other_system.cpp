@@ -7,44 +7,15 @@
 
 #include <memory>
 
+#include "dead_reckoning.hpp"
 #include "rig/journey.hpp"
-#include "rig/navigation_system.hpp"
 #include "rig/survey.hpp"
 #include "rig/trials.hpp"
 #include "sim/world.hpp"
 
 namespace {
 namespace rig = neopipe::rig;
-using Eigen::Vector2d;
-
-class DeadReckoning final : public rig::NavigationSystem {
- public:
-  explicit DeadReckoning(std::vector<Vector2d> survey, double reach = 1e9)
-      : survey_(std::move(survey)), reach_(reach) {}
-
-  [[nodiscard]] std::string name() const override { return "dead-reckoning"; }
-  [[nodiscard]] rig::CameraRequest camera() const override { return {64, 20}; }
-  [[nodiscard]] std::unique_ptr<rig::Plan> plan(std::uint32_t from, std::uint32_t to) const override {
-    if ((survey_.at(to) - survey_.at(from)).norm() > reach_) throw rig::UnreachableGoal("too far");
-    auto p = std::make_unique<rig::Plan>();
-    p->start = from;
-    p->goal = to;
-    p->landmarks = {from, to};
-    p->planned_distance = (survey_[to] - survey_[from]).norm();
-    return p;
-  }
-  rig::Travel travel(const rig::Plan& plan, rig::Equipment& equipment, rig::Witness& witness) const override {
-    witness.landmark_claimed(0, Vector2d::Zero());
-    const Vector2d d = survey_[plan.goal] - survey_[plan.start];
-    (void)equipment.arm.move_relative(d.x(), d.y(), 0);
-    witness.landmark_claimed(1, Vector2d::Zero());
-    return {};
-  }
-
- private:
-  std::vector<Vector2d> survey_;
-  double reach_;
-};
+using neopipe::test::DeadReckoning;
 
 neopipe::sim::World world() {
   neopipe::sim::World w;
@@ -89,7 +60,7 @@ TEST(OtherSystem, TheRigJudgesItsClaimsAgainstTheTruth) {
 
 TEST(OtherSystem, PairsTheSystemCannotPlanAreSkipped) {
   const auto w = world();
-  const DeadReckoning system(w.objects, 160);  // only pairs closer than 160 mm connect
+  const DeadReckoning system(w.objects, {.reach = 160});  // only pairs closer than 160 mm connect
   const auto plans = rig::draw_plans(system, w.objects.size(), 10, 3);
   for (const auto& p : plans) EXPECT_LE((w.objects[p->goal] - w.objects[p->start]).norm(), 160);
 }
