@@ -24,11 +24,11 @@ namespace fs = std::filesystem;
 namespace bt = neopipe::batch;
 using nlohmann::json;
 
-bt::Manifest manifest_of(const BatchArgs& a) {
+bt::Manifest batch_manifest_of(const BatchArgs& a) {
   return bt::load_manifest(a.manifest);
 }
 
-int plan(const BatchArgs& a) {
+int batch_plan(const BatchArgs& a) {
   bt::PlanRequest r;
   r.inputs = a.inputs;
   r.out = a.out;
@@ -57,8 +57,8 @@ int plan(const BatchArgs& a) {
   return kExitOk;
 }
 
-int run(const BatchArgs& a) {
-  const bt::Manifest m = manifest_of(a);
+int batch_run(const BatchArgs& a) {
+  const bt::Manifest m = batch_manifest_of(a);
   bt::check_shard_index(m, a.shard);
   const auto inputs = m.shard_inputs(a.shard);
   ProgressBar bar(fmt::format("neopipe batch run {}", a.shard), std::ssize(inputs), !a.quiet);
@@ -96,8 +96,8 @@ std::vector<std::int64_t> unfinished_shards(const bt::Manifest& m) {
   return shards;
 }
 
-int submit(const BatchArgs& a) {
-  const bt::Manifest m = manifest_of(a);
+int batch_submit(const BatchArgs& a) {
+  const bt::Manifest m = batch_manifest_of(a);
   bt::check_output_folder(m);
   bt::SubmitOptions o;
   o.partition = a.partition;
@@ -123,8 +123,8 @@ int submit(const BatchArgs& a) {
   return kExitOk;
 }
 
-int status(const BatchArgs& a) {
-  const bt::Manifest m = manifest_of(a);
+int batch_status(const BatchArgs& a) {
+  const bt::Manifest m = batch_manifest_of(a);
   const auto jobs = bt::submitted_jobs(m);
   const auto states = bt::shard_states(jobs);
   json shards = json::array();
@@ -161,8 +161,8 @@ int status(const BatchArgs& a) {
   return kExitOk;
 }
 
-int merge(const BatchArgs& a) {
-  const bt::Manifest m = manifest_of(a);
+int batch_merge(const BatchArgs& a) {
+  const bt::Manifest m = batch_manifest_of(a);
   const bt::BatchSummary s = bt::merge_tables(m, a.out, a.partial);
   if (a.json) {
     json failures = json::array();
@@ -186,7 +186,7 @@ int merge(const BatchArgs& a) {
   return kExitOk;
 }
 
-std::string read_text(const std::string& path) {
+std::string batch_read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path));
   std::stringstream ss;
@@ -194,9 +194,9 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-int merge_shards(const BatchArgs& a) {
+int batch_merge_shards(const BatchArgs& a) {
   std::vector<std::string> texts;
-  for (const std::string& f : a.shard_files) texts.push_back(read_text(f));
+  for (const std::string& f : a.shard_files) texts.push_back(batch_read_text(f));
   const bool nav = !texts.empty() && !texts.front().empty() && texts.front().front() == '{';
   std::string merged;
   if (nav) {
@@ -298,12 +298,12 @@ int batch_command(const CLI::App& batch, const BatchArgs& a) {
   const CLI::App* sub = batch.get_subcommands().front();
   const std::string name = sub->get_name();
   try {
-    if (name == "plan") return plan(a);
-    if (name == "run") return run(a);
-    if (name == "submit") return submit(a);
-    if (name == "status") return status(a);
-    if (name == "merge") return merge(a);
-    return merge_shards(a);
+    if (name == "plan") return batch_plan(a);
+    if (name == "run") return batch_run(a);
+    if (name == "submit") return batch_submit(a);
+    if (name == "status") return batch_status(a);
+    if (name == "merge") return batch_merge(a);
+    return batch_merge_shards(a);
   } catch (const bt::BatchError& e) {
     print_error("batch " + name, e.what());
     return kExitFailure;

@@ -173,7 +173,7 @@ std::string manifest_id(const Manifest& m) {
 
 Manifest manifest_from_json(const json& j) {
   if (!j.is_object() || j.value("format", "") != kManifestFormat) {
-    throw BatchError("not a neopipe batch manifest (no \"format\": \"neopipe-batch-manifest\")");
+    throw BatchError(R"(not a neopipe batch manifest (no "format": "neopipe-batch-manifest"))");
   }
   if (j.at("format_version").get<int>() != kManifestFormatVersion) {
     throw BatchError(fmt::format("manifest format version {}; this neopipe reads version {}",

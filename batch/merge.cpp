@@ -53,7 +53,7 @@ BatchSummary merge_tables(const Manifest& m, const fs::path& out, bool partial) 
     throw BatchError(fmt::format("--out {}: the batch's tables are {} (planned with --format {})", out.string(),
                                  m.options.format, m.options.format));
   }
-  const BatchSummary s = summarise_batch(m);
+  BatchSummary s = summarise_batch(m);
   if (s.pending > 0 && !partial) {
     throw BatchError(fmt::format("{} of {} inputs are not done yet (neopipe batch status; --partial merges what is)",
                                  s.pending, s.inputs));

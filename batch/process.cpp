@@ -1,12 +1,12 @@
 #include "batch/process.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,8 +14,6 @@
 #include <thread>
 
 #include "batch/atomic_file.hpp"
-
-extern char** environ;
 
 namespace neopipe::batch {
 namespace fs = std::filesystem;
@@ -52,6 +50,7 @@ ProcessResult run_process(const std::vector<std::string>& args, double timeout_s
   const fs::path err_path = temporary_path_for(base).concat(".err");
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
+  argv.reserve(copy.size() + 1);
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
