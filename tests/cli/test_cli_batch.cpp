@@ -85,6 +85,33 @@ TEST_F(BatchCli, BadInputGetsOneLineErrorsAndNothingIsOverwritten) {
   EXPECT_NE(dry.out.find("#SBATCH --array=0-1%1"), std::string::npos) << dry.out;
 }
 
+// Slurm's sbatch stood in for by scripts: one that refuses (as for an unknown partition), one that
+// accepts and answers a job id, which submit prints and records.
+TEST_F(BatchCli, SubmitReportsSbatchsRefusalAndRecordsTheJobId) {
+  const std::string a = image("a.png", 1);
+  ASSERT_EQ(run_neopipe({"batch", "plan", a, "--out", file("out"), "-q"}).exit_code, 0);
+  const std::string manifest = file("out/manifest.json");
+  fs::create_directories(file("refuse"));
+  fs::create_directories(file("accept"));
+  write_text(file("refuse/sbatch"),
+             "#!/bin/sh\necho 'sbatch: error: Batch job submission failed: Invalid partition name specified' >&2\n"
+             "exit 1\n");
+  write_text(file("accept/sbatch"), "#!/bin/sh\necho 4242\n");
+  for (const char* f : {"refuse/sbatch", "accept/sbatch"}) {
+    fs::permissions(file(f), fs::perms::owner_all);
+  }
+  const std::string path = ::getenv("PATH") ? ::getenv("PATH") : "";
+  ::setenv("PATH", (file("refuse") + ":" + path).c_str(), 1);  // NOLINT(concurrency-mt-unsafe): one thread
+  const auto refused = run_neopipe({"batch", "submit", "--manifest", manifest, "--partition", "nope"});
+  ::setenv("PATH", (file("accept") + ":" + path).c_str(), 1);  // NOLINT(concurrency-mt-unsafe): one thread
+  const auto accepted = run_neopipe({"batch", "submit", "--manifest", manifest});
+  ::setenv("PATH", path.c_str(), 1);  // NOLINT(concurrency-mt-unsafe): one thread
+  EXPECT_TRUE(one_error_line(refused, "Invalid partition name")) << refused.err;
+  EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
+  EXPECT_EQ(accepted.out, "4242\n");
+  EXPECT_NE(slurp(file("out/jobs.json")).find("\"4242\""), std::string::npos);
+}
+
 TEST_F(BatchCli, ShardedNavTrialsMergeToTheUnshardedRun) {
   ASSERT_EQ(run_neopipe({"sim", "world", "--objects", "60", "--seed", "3", "--out", file("w.yaml")}).exit_code, 0);
   const std::vector<std::string> base{"nav",    "--world", file("w.yaml"), "--trials", "5",
