@@ -134,6 +134,14 @@ start() {
     say "already running: $(timeout 5 sinfo -h -N -o '%N %T %c CPUs %m MB' | head -1)"
     return 0
   fi
+  # Daemons this script did not start (a distribution's service, another cluster) hold the ports.
+  for d in slurmctld slurmd; do
+    for pid in $(pgrep -x "$d" || true); do
+      if [ "$pid" != "$($sudo cat "$state/$d.pid" 2>/dev/null || true)" ]; then
+        fail "a $d not started by this script runs (pid $pid; systemctl stop $d?): stop it first"
+      fi
+    done
+  done
   # Half a cluster (one daemon left from a crash) is stopped first, so the config is fresh.
   stop_pid_file "$state/slurmd.pid" slurmd
   stop_pid_file "$state/slurmctld.pid" slurmctld
