@@ -137,7 +137,8 @@ start() {
   # Daemons this script did not start (a distribution's service, another cluster) hold the ports.
   for d in slurmctld slurmd; do
     for pid in $(pgrep -x "$d" || true); do
-      if [ "$pid" != "$($sudo cat "$state/$d.pid" 2>/dev/null || true)" ]; then
+      if [ "$pid" != "$($sudo cat "$state/$d.pid" 2>/dev/null || true)" ] &&
+         ! wait_for 10 "$d $pid to end" bash -c "! kill -0 $pid"; then  # one of ours still shutting down
         fail "a $d not started by this script runs (pid $pid; systemctl stop $d?): stop it first"
       fi
     done
