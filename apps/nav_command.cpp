@@ -228,7 +228,8 @@ int trials(const NavArgs& a, const Setup& s) {
   ProgressBar bar("nav", shard ? shard->last - shard->first : *a.trials, true);
   rig::TrialsReport report;
   try {
-    report = rig::trials_report(nav_request(a), s, *a.trials, [&](std::int64_t done) { bar.update(done); }, shard);
+    report = rig::trials_report(
+        nav_request(a), s, *a.trials, [&](std::int64_t done) { bar.update(done); }, shard);
   } catch (const rig::RequestError& e) {
     throw UsageError{e.what()};
   }
@@ -371,6 +372,7 @@ int nav_command(const NavArgs& a) {
   if (!a.shard.empty() && (!a.trials || !a.json || !a.diagram.empty())) {
     throw UsageError{"--shard goes with --trials N --json (and without --reliability-diagram: draw it from the merge)"};
   }
+  if (a.trials) (void)trial_shard(a);  // a bad --shard fails before the survey, not after
   if (a.trials && (!a.plot.empty() || !a.video.empty())) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }

@@ -137,6 +137,11 @@ TEST_F(BatchCli, ShardedNavTrialsMergeToTheUnshardedRun) {
   EXPECT_EQ(merged.out, untimed);
   merge.pop_back();
   EXPECT_TRUE(one_error_line(run_neopipe(merge), "missing"));
+  auto bad = base;
+  bad.insert(bad.end(), {"--shard", "3/3"});
+  EXPECT_TRUE(one_error_line(run_neopipe(bad), "out of range"));
+  bad.erase(bad.begin() + 9);  // --json
+  EXPECT_TRUE(one_error_line(run_neopipe(bad), "--shard goes with --trials N --json"));
 }
 
 TEST_F(BatchCli, ShardedMapStatsMergeToTheUnshardedCsv) {
