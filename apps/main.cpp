@@ -6,6 +6,7 @@
 #include <exception>
 #include <string>
 
+#include "apps/batch_command.hpp"
 #include "apps/bench_command.hpp"
 #include "apps/calibrate_command.hpp"
 #include "apps/compare_command.hpp"
@@ -69,6 +70,8 @@ int run_main(int argc, char** argv) {
   CLI::App* qualnav = add_qualnav_command(app, qualnav_args);
   CompareArgs compare_args;
   CLI::App* compare = add_compare_command(app, compare_args);
+  BatchArgs batch_args;
+  CLI::App* batch = add_batch_command(app, batch_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -76,7 +79,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav, compare; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav, compare, batch; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -110,6 +113,10 @@ int run_main(int argc, char** argv) {
   if (qualnav->parsed()) {
     const auto subs = qualnav->get_subcommands();
     return guarded("qualnav " + subs.front()->get_name(), [&] { return qualnav_command(*qualnav, qualnav_args); });
+  }
+  if (batch->parsed()) {
+    const auto subs = batch->get_subcommands();
+    return guarded("batch " + subs.front()->get_name(), [&] { return batch_command(*batch, batch_args); });
   }
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();

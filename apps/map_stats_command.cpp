@@ -11,6 +11,7 @@
 #include "apps/cli_support.hpp"
 #include "apps/map_stats_plot.hpp"
 #include "apps/progress.hpp"
+#include "batch/stats_shards.hpp"
 #include "nav/mapmaker/statistics.hpp"
 
 namespace neopipe::apps {
@@ -107,6 +108,10 @@ CLI::App* add_map_stats_command(CLI::App* map, MapStatsArgs& a) {
   cmd->add_option("--csv", a.csv, "Write the CSV here (default stdout)");
   cmd->add_option("--plot", a.plot, "Draw Fig. 7 and Fig. 11 into this PNG");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress bar");
+  cmd->add_option("--shard", a.shard,
+                  "Compute only shard I of K of the (window, population) rows, under a \"# neopipe shard\" line; "
+                  "`neopipe batch merge-shards` merges the K shards into the unsharded CSV")
+      ->type_name("I/K");
   // `neopipe map` needs --world or --blobs, but `map stats` makes its own worlds; main.cpp dispatches
   // to stats before map's checks run.
   map->require_subcommand(0, 1);
@@ -146,14 +151,38 @@ int map_stats_command(const MapStatsArgs& a) {
     throw std::runtime_error(fmt::format("--plot {}: cannot write this file", a.plot));
   }
 
+  std::optional<batch::ShardSpec> shard;
+  if (!a.shard.empty()) {
+    if (!a.plot.empty()) throw UsageError{"--plot draws every row: draw it from the merged shards, not with --shard"};
+    try {
+      shard = batch::parse_shard(a.shard);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError{e.what()};
+    }
+  }
+  const auto all_rows = static_cast<std::int64_t>(o.windows.size() * o.populations.size());
+  const batch::ItemRange range = shard ? batch::shard_range(all_rows, *shard) : batch::ItemRange{0, all_rows};
+
   std::vector<mm::StatisticsRow> rows;
   {
-    ProgressBar bar("neopipe map stats", static_cast<std::int64_t>(o.windows.size() * o.populations.size() * o.trials),
-                    !a.quiet);
-    rows = mm::parkway_statistics(
-        o, [&](std::size_t done, std::size_t) { bar.update(static_cast<std::int64_t>(done), "worlds"); });
+    ProgressBar bar("neopipe map stats", range.size() * static_cast<std::int64_t>(o.trials), !a.quiet);
+    std::size_t before = 0;
+    // A shard's rows are runs of one window and consecutive populations; every row depends on its own
+    // (window, population, trials, seed) only, so it is the same computed alone as among all rows.
+    for (const batch::GridRun& run : batch::grid_runs(o.windows.size(), o.populations.size(), range)) {
+      mm::StatisticsOptions part = o;
+      part.windows = {o.windows[run.outer]};
+      part.populations.assign(o.populations.begin() + static_cast<std::ptrdiff_t>(run.inner_first),
+                              o.populations.begin() + static_cast<std::ptrdiff_t>(run.inner_last));
+      const auto got = mm::parkway_statistics(part, [&](std::size_t done, std::size_t) {
+        bar.update(static_cast<std::int64_t>(before + done), "worlds");
+      });
+      rows.insert(rows.end(), got.begin(), got.end());
+      before += (run.inner_last - run.inner_first) * o.trials;
+    }
   }
   std::ostream& out = a.csv.empty() ? std::cout : csv_file;
+  if (shard) out << batch::shard_table_line(*shard, range, all_rows);
   write_csv(out, rows);
   out.flush();
   if (!out) throw std::runtime_error(fmt::format("--csv {}: writing failed", a.csv.empty() ? "stdout" : a.csv));

@@ -21,6 +21,7 @@ struct MapStatsArgs {
   std::string csv;   ///< empty: stdout
   std::string plot;  ///< PNG
   bool quiet = false;
+  std::string shard;  ///< --shard I/K: rows of shard I of K (neopipe batch merge-shards)
 };
 
 /// Adds `stats` under `map` (which then needs no --world): call after add_map_command.

@@ -14,6 +14,7 @@
 #include "apps/outcome_table.hpp"
 #include "apps/progress.hpp"
 #include "apps/reliability_diagram.hpp"
+#include "batch/shard.hpp"
 #include "nav/mapmaker/map_maker.hpp"
 #include "rig/experiment.hpp"
 #include "rig/journey.hpp"
@@ -209,17 +210,36 @@ int one_journey(const NavArgs& a, const Setup& s) {
   return kExitOk;
 }
 
+// --shard I/K: journeys I of K, as JSON for `neopipe batch merge-shards` (rig/trials_shards.hpp).
+std::optional<rig::TrialShard> trial_shard(const NavArgs& a) {
+  if (a.shard.empty()) return std::nullopt;
+  batch::ShardSpec spec;
+  try {
+    spec = batch::parse_shard(a.shard);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError{e.what()};
+  }
+  const batch::ItemRange r = batch::shard_range(*a.trials, spec);
+  return rig::TrialShard{spec.index, spec.count, *a.trials, r.first, r.last};
+}
+
 int trials(const NavArgs& a, const Setup& s) {
-  ProgressBar bar("nav", *a.trials, true);
+  const std::optional<rig::TrialShard> shard = trial_shard(a);
+  ProgressBar bar("nav", shard ? shard->last - shard->first : *a.trials, true);
   rig::TrialsReport report;
   try {
-    report = rig::trials_report(nav_request(a), s, *a.trials, [&](std::int64_t done) { bar.update(done); });
+    report = rig::trials_report(
+        nav_request(a), s, *a.trials, [&](std::int64_t done) { bar.update(done); }, shard);
   } catch (const rig::RequestError& e) {
     throw UsageError{e.what()};
   }
   bar.clear();
   const rig::TrialsSummary& t = report.summary;
   const json& j = report.json;
+  if (shard) {
+    std::cout << j.dump() << '\n';
+    return kExitOk;
+  }
   if (!a.diagram.empty()) {
     std::vector<ForecastOutcome> forecasts;
     for (const rig::TrialRecord& r : t.trials)
@@ -330,11 +350,16 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "qrm: journeys between the pairs of a trials JSON (its journeys' from/to, e.g. Park & Kender's "
                   "--trials --json) instead of --trials random draws, so the two systems meet the same pairs")
       ->type_name("FILE");
+  cmd->add_option("--shard", a.shard,
+                  "Trials: run only shard I of K of the --trials journeys (seeded as in the whole run) and print "
+                  "them as JSON; `neopipe batch merge-shards` merges the K shards into the unsharded --json")
+      ->type_name("I/K");
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
 
 int nav_command(const NavArgs& a) {
+  if (!a.shard.empty() && a.system != "park-kender") throw UsageError{"--shard: only --system park-kender's trials"};
   if (a.system == "qrm") return qrm_nav_command(a);
   if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
@@ -344,6 +369,10 @@ int nav_command(const NavArgs& a) {
   if (a.trials && *a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", *a.trials)};
   if (a.trials && a.as_trial) throw UsageError{"--as-trial replays one journey: give --from/--to, not --trials"};
   if (!a.trials && !a.diagram.empty()) throw UsageError{"--reliability-diagram goes with --trials"};
+  if (!a.shard.empty() && (!a.trials || !a.json || !a.diagram.empty())) {
+    throw UsageError{"--shard goes with --trials N --json (and without --reliability-diagram: draw it from the merge)"};
+  }
+  if (a.trials) (void)trial_shard(a);  // a bad --shard fails before the survey, not after
   if (a.trials && (!a.plot.empty() || !a.video.empty())) {
     throw UsageError{"--plot and --video draw one journey: use them with --from/--to, not --trials"};
   }

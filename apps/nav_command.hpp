@@ -34,6 +34,7 @@ struct NavArgs {
   double min_reliability = 0;             ///< refuse routes forecast below this
   std::string diagram;                    ///< --reliability-diagram PNG
   std::string survey_csv;                 ///< --survey-csv: what the map-maker believes, beside the truth
+  std::string shard;                      ///< --shard I/K: journeys of shard I of K (neopipe batch merge-shards)
   double window = 50;
   int threads = 0;
   bool json = false;

@@ -328,33 +328,27 @@ json outcome_tables_json(const TrialsSummary& t) {
 }
 
 TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t trials,
-                           const std::function<void(std::int64_t)>& progress) {
+                           const std::function<void(std::int64_t)>& progress, const std::optional<TrialShard>& shard) {
   if (trials < 1) throw RequestError(fmt::format("--trials {}: must be at least 1", trials));
   const auto system = make_park_kender(s.survey, s.settings, criterion_of(a.cost));
   TrialsReport out;
   out.plans = draw_plans(*system, s.world.objects.size(), trials, a.seed);
-  out.summary = run_trials(*system, out.plans, s.world, s.settings.journey, a.threads, progress);
+  // A shard runs journeys first..last-1 of the same plans, seeded by their index in the whole run.
+  const std::int64_t first = shard ? shard->first : 0;
+  const std::int64_t last = shard ? shard->last : trials;
+  std::vector<std::unique_ptr<Plan>> mine(std::make_move_iterator(out.plans.begin() + first),
+                                          std::make_move_iterator(out.plans.begin() + last));
+  out.summary = run_trials(*system, mine, s.world, s.settings.journey, a.threads, progress, first);
+  std::move(mine.begin(), mine.end(), out.plans.begin() + first);
   const TrialsSummary& t = out.summary;
-  // Rates are over the journeys run: a refused plan is not a failure, it is counted apart.
-  const std::int64_t asked = std::ssize(t.trials);
-  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
-  const double fps = t.seconds > 0 ? static_cast<double>(t.frames) / t.seconds : 0;
-  // Recoveries by kind: the map's QOC rules, and returns to an earlier landmark for another choice.
-  std::int64_t backtracks = 0;
-  std::int64_t rule_recoveries = 0;
-  for (const TrialRecord& r : t.trials) {
-    backtracks += r.backtracks;
-    rule_recoveries += r.recoveries - r.backtracks;
-  }
-  double mean_planned_distance = 0;
-  for (const auto& p : out.plans)
-    if (p->refused.empty()) mean_planned_distance += p->planned_distance / static_cast<double>(n);
   // Every journey, so a failure can be replayed alone: its pair with --from/--to (the arm and
   // camera noise of a single journey differ: they are seeded by --seed, not by the trial index).
+  // The raw fields commanded_travel and planned_distance feed the totals (trials_json removes them).
   json journeys = json::array();
   for (std::size_t i = 0; i < t.trials.size(); ++i) {
     const TrialRecord& r = t.trials[i];
-    const mm::Route& route = route_of(*out.plans[i]);
+    const Plan& plan = *out.plans[static_cast<std::size_t>(first) + i];
+    const mm::Route& route = route_of(plan);
     journeys.push_back({{"from", r.from},
                         {"to", r.to},
                         {"planned_reliability", r.planned_reliability},
@@ -368,32 +362,24 @@ TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t 
                         {"recoveries", r.recoveries},
                         {"backtracks", r.backtracks},
                         {"frames", r.frames},
-                        {"arm_travel", r.true_travel}});
+                        {"arm_travel", r.true_travel},
+                        {kJourneyCommandedTravel, r.commanded_travel},
+                        {kJourneyPlannedDistance, plan.planned_distance}});
   }
-  out.json = {{"trials", asked},
-              {"run", t.run()},
-              {"refused", t.refused},
-              {"min_reliability", a.min_reliability},
-              {"frames", t.frames},
-              {"seconds", t.seconds},
-              {"frames_per_second", fps},
-              {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
-              {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
-              {"cost", a.cost},
-              {"survey", survey_json(s.survey)},
-              {"sigma_map", s.survey.sigma},
-              {"mean_planned_reliability", t.mean_planned_reliability()},
-              {"mean_planned_distance", mean_planned_distance},
-              {"recoveries", {{"qoc_rules", rule_recoveries}, {"backtracks", backtracks}}},
-              {"sigma_move", a.sigma_move},
-              {"sigma_rot", a.sigma_rot},
-              {"window", a.window},
-              {"recovery", !a.no_recovery},
-              {"navigator", a.navigator},
-              {"descriptions", a.descriptions},
-              {"seed", a.seed},
-              {"journeys", journeys}};
-  out.json.update(outcome_tables_json(t));
+  const json config = {{"min_reliability", a.min_reliability},
+                       {"cost", a.cost},
+                       {"survey", survey_json(s.survey)},
+                       {"sigma_map", s.survey.sigma},
+                       {"sigma_move", a.sigma_move},
+                       {"sigma_rot", a.sigma_rot},
+                       {"window", a.window},
+                       {"recovery", !a.no_recovery},
+                       {"navigator", a.navigator},
+                       {"descriptions", a.descriptions},
+                       {"seed", a.seed}};
+  // Rates are over the journeys run: a refused plan is not a failure, it is counted apart.
+  out.json = shard ? trials_shard_json(config, journeys, *shard, t.seconds)
+                   : trials_json(config, std::move(journeys), t.seconds);
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include "rig/navigation_system.hpp"
 #include "rig/survey.hpp"
 #include "rig/trials.hpp"
+#include "rig/trials_shards.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::rig {
@@ -111,8 +112,11 @@ struct TrialsReport {
   nlohmann::json json;  ///< `neopipe nav --trials N --json`'s object
 };
 
-/// `trials` journeys between random reachable pairs (drawn from the request's seed), judged.
+/// `trials` journeys between random reachable pairs (drawn from the request's seed), judged. With
+/// `shard`, only its journeys run (summary.trials holds them alone) and the JSON is the shard's
+/// (trials_shard_json), for merge_trials_shards.
 TrialsReport trials_report(const NavRequest& request, const NavSetup& setup, std::int64_t trials,
-                           const std::function<void(std::int64_t)>& progress = {});
+                           const std::function<void(std::int64_t)>& progress = {},
+                           const std::optional<TrialShard>& shard = std::nullopt);
 
 }  // namespace neopipe::rig

@@ -60,7 +60,7 @@ double TrialsSummary::mean_planned_reliability() const {
 
 TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::unique_ptr<Plan>>& plans,
                          const sim::World& world, const JourneySettings& settings, int threads,
-                         const std::function<void(std::int64_t)>& progress) {
+                         const std::function<void(std::int64_t)>& progress, std::int64_t first_trial) {
   TrialsSummary summary;
   summary.trials.resize(plans.size());
   std::atomic<std::int64_t> done{0};
@@ -80,7 +80,7 @@ TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::
         tbb::blocked_range<std::size_t>(0, plans.size(), 1), [&](const tbb::blocked_range<std::size_t>& range) {
           for (std::size_t i = range.begin(); i != range.end(); ++i) {
             JourneySettings s = settings;
-            s.seed = trial_seed(settings.seed, static_cast<std::int64_t>(i));
+            s.seed = trial_seed(settings.seed, first_trial + static_cast<std::int64_t>(i));
             const Plan& plan = *plans[i];
             TrialRecord& t = summary.trials[i];
             t.from = plan.start;

@@ -59,11 +59,12 @@ struct TrialsSummary {
 };
 
 /// Runs every plan as a journey (in parallel on `threads` threads, 0: all cores), journey i seeded
-/// by trial_seed(settings.seed, i). `progress`, if set, is called with the number of journeys
-/// done, from one thread at a time.
+/// by trial_seed(settings.seed, first_trial + i) (first_trial: where these plans start in a larger
+/// run that is split into shards). `progress`, if set, is called with the number of journeys done,
+/// from one thread at a time.
 TrialsSummary run_trials(const NavigationSystem& system, const std::vector<std::unique_ptr<Plan>>& plans,
                          const sim::World& world, const JourneySettings& settings, int threads,
-                         const std::function<void(std::int64_t)>& progress = {});
+                         const std::function<void(std::int64_t)>& progress = {}, std::int64_t first_trial = 0);
 
 /// Two runs over the same journeys, compared journey by journey.
 struct PairedComparison {

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages neopipe needs to build, test and run (`--demo`: only to build and run).
+# Installs the Debian packages neopipe needs to build, test and run (`--demo`: only to build and run;
+# `--slurm`: only the one-node Slurm cluster of scripts/slurm-local.sh, for `neopipe batch`'s tests).
 # Safe to run again: it installs only what is missing. Needs root, or sudo.
 set -euo pipefail
 
@@ -18,7 +19,9 @@ packages=(
   ccache                 # rebuilds (and the sanitizer trees of scripts/sanitize.sh) recompile only what changed
 )
 # ... and what testing, benchmarking and fuzzing it needs besides.
-if [ "${1:-}" != "--demo" ]; then
+if [ "${1:-}" = "--slurm" ]; then
+  packages=(slurm-wlm munge)  # slurmctld, slurmd, sbatch/squeue/sacct/scancel, and munged to authenticate
+elif [ "${1:-}" != "--demo" ]; then
   packages+=(
     libgtest-dev libgmock-dev
     libbenchmark-dev       # kernel micro-benchmarks
