@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "nav/qrm/composition.hpp"
@@ -120,6 +123,7 @@ TEST(QrmMapReference, LargeMapsEqualThePlainPropagation) {
   for (int scene = 0; scene < 3; ++scene) {
     const int n = size(rng);
     std::vector<Eigen::Vector2d> p;
+    p.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) p.emplace_back(coordinate(rng), coordinate(rng));
     // Landmarks join in a shuffled order, as a navigator meets them; ids are the point indices.
     std::vector<int> join(static_cast<std::size_t>(n));
