@@ -141,6 +141,17 @@ NEOPIPE_QRM_MAP_HOT bool RelationalMap::restrict(int a, int b, int c, StateSet s
   return true;
 }
 
+const RelationalMap::Informative& RelationalMap::informative(StateSet x) {
+  const auto found = informative_.find(x.mask());
+  if (found != informative_.end()) return found->second;
+  Informative out{0, 0};
+  for (State s = 1; s <= kStateCount; ++s) {
+    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= StateSet::Mask{1} << s;
+    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= StateSet::Mask{1} << s;
+  }
+  return informative_.emplace(x.mask(), out).first->second;
+}
+
 bool RelationalMap::process(const Triple& t) {
   const auto [a, b, c] = t;
   const StateSet abc = read(a, b, c);
@@ -150,22 +161,33 @@ bool RelationalMap::process(const Triple& t) {
   for (const auto& [p, q, r] : orders) {
     const StateSet pqr = read(p, q, r);
     if (pqr.is_all()) continue;  // comp(all, s) = comp(s, all) = all: nothing to learn
+    // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
+    // contains it), and likewise comp(dp:q, pqr): such compositions are skipped, and the order
+    // itself when none can be informative (relations are never empty).
+    const Informative& useful = informative(pqr);
+    const StateSet::Mask right_useless = StateSet::kAllMask & ~useful.right;
+    const StateSet::Mask left_useless = StateSet::kAllMask & ~useful.left;
+    if (useful.right == 0 && useful.left == 0) continue;
     // Every d in increasing order, as a loop over all landmarks would, but only those for which
     // qr:d or dp:q may be known: for the others both reads below are "all" and skipped. Within
     // this loop the restrictions at d change the bits of {q, r} and {p, q} at d only, so a word
     // read once is what the loop over all d would have found.
     const Word* qr_known = known(q, r);
     const Word* pq_known = known(p, q);
+    // A half that can learn nothing does not need its landmarks visited (the other half's reads
+    // are "all" there, and no restriction of the skipped half can make them known).
+    const Word qr_mask = useful.right != 0 ? ~Word{0} : 0;
+    const Word pq_mask = useful.left != 0 ? ~Word{0} : 0;
     for (std::size_t w = 0; w < words_; ++w) {
-      for (Word bits = qr_known[w] | pq_known[w]; bits != 0; bits &= bits - 1) {
+      for (Word bits = (qr_known[w] & qr_mask) | (pq_known[w] & pq_mask); bits != 0; bits &= bits - 1) {
         const int d = static_cast<int>(w * kWordBits) + std::countr_zero(bits);
         if (d == p || d == q || d == r) continue;
         // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
         const StateSet qrd = read(q, r, d);
-        if (!qrd.is_all() && !restrict(p, q, d, comp(pqr, qrd))) return false;
+        if (!qrd.is_all() && (qrd.mask() & right_useless) == 0 && !restrict(p, q, d, comp(pqr, qrd))) return false;
         // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
         const StateSet dpq = read(d, p, q);
-        if (!dpq.is_all() && !restrict(d, p, r, comp(dpq, pqr))) return false;
+        if (!dpq.is_all() && (dpq.mask() & left_useless) == 0 && !restrict(d, p, r, comp(dpq, pqr))) return false;
       }
     }
   }

@@ -93,6 +93,15 @@ class RelationalMap {
     Triple sorted;
   };
   std::vector<JournalEntry> journal_;
+  /// Per value of a relation X (its mask): the states y with comp(X, {y}) not "all", and the states
+  /// x with comp({x}, X) not "all". A composition with a state outside them is "all" and restricts
+  /// nothing, so propagation skips it without composing. Depends only on the table.
+  struct Informative {
+    StateSet::Mask right;
+    StateSet::Mask left;
+  };
+  const Informative& informative(StateSet x);
+  std::unordered_map<StateSet::Mask, Informative> informative_;
   std::vector<Triple> queue_;
 };
 
