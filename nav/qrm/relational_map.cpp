@@ -1,6 +1,7 @@
 #include "nav/qrm/relational_map.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <string>
 
 #include "nav/qrm/operators.hpp"
@@ -10,6 +11,15 @@ namespace neopipe::nav::qrm {
 RelationalMap::RelationalMap(const CompositionTable& table) : table_(&table) {}
 
 namespace {
+
+// slot(), read() and restrict() run a few hundred million times while a 100-landmark map is built
+// (propagation reads every known neighbour of a changed triple): calls to them were a third of the
+// time, so they are forced inline into process() where the compiler would not.
+#if defined(__GNUC__)
+#define NEOPIPE_QRM_MAP_HOT [[gnu::always_inline]] inline
+#else
+#define NEOPIPE_QRM_MAP_HOT inline
+#endif
 
 // The unordered triples {i < j < k} in the order landmarks join the map (all of k's after all of
 // k - 1's): C(k, 3) + C(j, 2) + i, the combinatorial number system. A closed form, so a read
@@ -27,6 +37,43 @@ void RelationalMap::add_landmark(LandmarkId id) {
   index_.emplace(id, static_cast<int>(k));
   // The new landmark is the largest index: its triples {i < j < k} come last, each unknown.
   masks_.resize(3 * triple_rank(0, 0, k + 1), StateSet::kAllMask);
+  // k's pairs {i < k} come last by rank, with no known triple yet; more landmarks than the bitsets
+  // hold widen every pair's bitset (rare: one more word per 64 landmarks).
+  const std::size_t words = (ids_.size() + kWordBits - 1) / kWordBits;
+  const std::size_t pairs = ids_.size() * (ids_.size() - 1) / 2;
+  if (words == words_) {
+    known_.resize(pairs * words_, 0);
+    return;
+  }
+  std::vector<Word> wider(pairs * words, 0);
+  for (std::size_t pair = 0; pair < (words_ == 0 ? 0 : known_.size() / words_); ++pair) {
+    std::copy_n(known_.begin() + static_cast<std::ptrdiff_t>(pair * words_), words_,
+                wider.begin() + static_cast<std::ptrdiff_t>(pair * words));
+  }
+  known_ = std::move(wider);
+  words_ = words;
+}
+
+std::size_t RelationalMap::pair_rank(int i, int j) {
+  const auto lo = static_cast<std::size_t>(std::min(i, j));
+  const auto hi = static_cast<std::size_t>(std::max(i, j));
+  return hi * (hi - 1) / 2 + lo;
+}
+
+void RelationalMap::set_known(int x, int y, int z) {
+  const auto bit = [](int d) { return Word{1} << (static_cast<unsigned>(d) % kWordBits); };
+  const auto word = [](int d) { return static_cast<std::size_t>(d) / kWordBits; };
+  known(x, y)[word(z)] |= bit(z);
+  known(y, z)[word(x)] |= bit(x);
+  known(x, z)[word(y)] |= bit(y);
+}
+
+void RelationalMap::clear_known(int x, int y, int z) {
+  const auto bit = [](int d) { return Word{1} << (static_cast<unsigned>(d) % kWordBits); };
+  const auto word = [](int d) { return static_cast<std::size_t>(d) / kWordBits; };
+  known(x, y)[word(z)] &= ~bit(z);
+  known(y, z)[word(x)] &= ~bit(x);
+  known(x, z)[word(y)] &= ~bit(y);
 }
 
 int RelationalMap::index_of(LandmarkId id) const {
@@ -35,7 +82,7 @@ int RelationalMap::index_of(LandmarkId id) const {
   return it->second;
 }
 
-RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
+NEOPIPE_QRM_MAP_HOT RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
   // Stored for x < y < z: xy:z (0), yz:x (1), zx:y (2). qp:r = I(pq:r), so first make p < q.
   bool inverse = p > q;
   const int i = std::min(p, q);
@@ -61,7 +108,7 @@ RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
           inverse};
 }
 
-StateSet RelationalMap::read(int p, int q, int r) const {
+NEOPIPE_QRM_MAP_HOT StateSet RelationalMap::read(int p, int q, int r) const {
   const Slot s = slot(p, q, r);
   const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
   return s.inverse ? inverse(stored) : stored;
@@ -75,7 +122,7 @@ StateSet RelationalMap::relation(LandmarkId p, LandmarkId q, LandmarkId r) const
   return read(a, b, c);
 }
 
-bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
+NEOPIPE_QRM_MAP_HOT bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
   if (states.is_all()) return true;
   const Slot s = slot(a, b, c);
   const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
@@ -83,10 +130,26 @@ bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
   const StateSet next = current & states;
   if (next == current) return true;
   if (next.empty()) return false;
-  journal_.emplace_back(s.mask_index, stored.mask());
+  // next is a strict subset of current, so never "all": the triple is known from now on.
+  const int x = std::min({a, b, c});
+  const int z = std::max({a, b, c});
+  const int y = a + b + c - x - z;
+  journal_.push_back({s.mask_index, stored.mask(), {x, y, z}});
   masks_[s.mask_index] = (s.inverse ? inverse(next) : next).mask();
+  set_known(x, y, z);
   queue_.push_back({a, b, c});
   return true;
+}
+
+const RelationalMap::Informative& RelationalMap::informative(StateSet x) {
+  const auto found = informative_.find(x.mask());
+  if (found != informative_.end()) return found->second;
+  Informative out{0, 0};
+  for (State s = 1; s <= kStateCount; ++s) {
+    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= StateSet::Mask{1} << s;
+    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= StateSet::Mask{1} << s;
+  }
+  return informative_.emplace(x.mask(), out).first->second;
 }
 
 bool RelationalMap::process(const Triple& t) {
@@ -94,19 +157,38 @@ bool RelationalMap::process(const Triple& t) {
   const StateSet abc = read(a, b, c);
   if (!restrict(b, c, a, left_shift(abc)) || !restrict(c, a, b, right_shift(abc))) return false;
   const std::array<Triple, 6> orders{{{a, b, c}, {b, c, a}, {c, a, b}, {b, a, c}, {a, c, b}, {c, b, a}}};
-  const int n = static_cast<int>(ids_.size());
   const CompositionTable& comp = *table_;
   for (const auto& [p, q, r] : orders) {
     const StateSet pqr = read(p, q, r);
     if (pqr.is_all()) continue;  // comp(all, s) = comp(s, all) = all: nothing to learn
-    for (int d = 0; d < n; ++d) {
-      if (d == p || d == q || d == r) continue;
-      // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
-      const StateSet qrd = read(q, r, d);
-      if (!qrd.is_all() && !restrict(p, q, d, comp(pqr, qrd))) return false;
-      // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
-      const StateSet dpq = read(d, p, q);
-      if (!dpq.is_all() && !restrict(d, p, r, comp(dpq, pqr))) return false;
+    // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
+    // contains it), and likewise comp(dp:q, pqr): such compositions are skipped, and the order
+    // itself when none can be informative (relations are never empty).
+    const Informative& useful = informative(pqr);
+    const StateSet::Mask right_useless = StateSet::kAllMask & ~useful.right;
+    const StateSet::Mask left_useless = StateSet::kAllMask & ~useful.left;
+    if (useful.right == 0 && useful.left == 0) continue;
+    // Every d in increasing order, as a loop over all landmarks would, but only those for which
+    // qr:d or dp:q may be known: for the others both reads below are "all" and skipped. Within
+    // this loop the restrictions at d change the bits of {q, r} and {p, q} at d only, so a word
+    // read once is what the loop over all d would have found.
+    const Word* qr_known = known(q, r);
+    const Word* pq_known = known(p, q);
+    // A half that can learn nothing does not need its landmarks visited (the other half's reads
+    // are "all" there, and no restriction of the skipped half can make them known).
+    const Word qr_mask = useful.right != 0 ? ~Word{0} : 0;
+    const Word pq_mask = useful.left != 0 ? ~Word{0} : 0;
+    for (std::size_t w = 0; w < words_; ++w) {
+      for (Word bits = (qr_known[w] & qr_mask) | (pq_known[w] & pq_mask); bits != 0; bits &= bits - 1) {
+        const int d = static_cast<int>(w * kWordBits) + std::countr_zero(bits);
+        if (d == p || d == q || d == r) continue;
+        // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
+        const StateSet qrd = read(q, r, d);
+        if (!qrd.is_all() && (qrd.mask() & right_useless) == 0 && !restrict(p, q, d, comp(pqr, qrd))) return false;
+        // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
+        const StateSet dpq = read(d, p, q);
+        if (!dpq.is_all() && (dpq.mask() & left_useless) == 0 && !restrict(d, p, r, comp(dpq, pqr))) return false;
+      }
     }
   }
   return true;
@@ -127,7 +209,15 @@ FuseOutcome RelationalMap::fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateS
   }
   if (!consistent) {
     // Newest first, so a relation changed twice ends at its value before the measurement.
-    for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].first] = journal_[n].second;
+    for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].mask_index] = journal_[n].before;
+    // A triple all of whose relations are "all" again is unknown again.
+    for (const JournalEntry& e : journal_) {
+      const std::size_t first = e.mask_index - e.mask_index % 3;
+      if (masks_[first] == StateSet::kAllMask && masks_[first + 1] == StateSet::kAllMask &&
+          masks_[first + 2] == StateSet::kAllMask) {
+        clear_known(e.sorted[0], e.sorted[1], e.sorted[2]);
+      }
+    }
     journal_.clear();
     queue_.clear();
     ++inconsistencies_;

@@ -58,21 +58,50 @@ class RelationalMap {
   };
   using Triple = std::array<int, 3>;
 
+  using Word = std::uint64_t;
+  static constexpr int kWordBits = 64;
+
   int index_of(LandmarkId id) const;
   Slot slot(int p, int q, int r) const;
   StateSet read(int p, int q, int r) const;
   /// false when the restriction empties the relation.
   bool restrict(int a, int b, int c, StateSet states);
   bool process(const Triple& t);
+  /// The bitset of third landmarks d for which {i, j, d} is known (i != j, either order).
+  Word* known(int i, int j) { return known_.data() + pair_rank(i, j) * words_; }
+  static std::size_t pair_rank(int i, int j);
+  /// Marks, or clears, {x, y, z} in the three pairs' bitsets.
+  void set_known(int x, int y, int z);
+  void clear_known(int x, int y, int z);
 
   const CompositionTable* table_;
   std::vector<LandmarkId> ids_;
   std::unordered_map<LandmarkId, int> index_;
   /// Three masks per unordered triple {i < j < k}: ij:k, jk:i, ki:j, the triples by rank.
   std::vector<StateSet::Mask> masks_;
+  /// Per unordered pair {i < j} (by rank), `words_` words: bit d is set when some relation of the
+  /// triple {i, j, d} is not "all". Propagation composes only with known relations (composition
+  /// with "all" is "all" and is skipped), so it visits these d only instead of every landmark.
+  std::vector<Word> known_;
+  std::size_t words_ = 0;
   int inconsistencies_ = 0;
-  // Scratch of one fuse, kept to reuse its memory.
-  std::vector<std::pair<std::uint32_t, StateSet::Mask>> journal_;
+  // Scratch of one fuse, kept to reuse its memory: a changed mask's index, its value before, and
+  // the triple it belongs to (to clear the known bits again on a rollback).
+  struct JournalEntry {
+    std::uint32_t mask_index;
+    StateSet::Mask before;
+    Triple sorted;
+  };
+  std::vector<JournalEntry> journal_;
+  /// Per value of a relation X (its mask): the states y with comp(X, {y}) not "all", and the states
+  /// x with comp({x}, X) not "all". A composition with a state outside them is "all" and restricts
+  /// nothing, so propagation skips it without composing. Depends only on the table.
+  struct Informative {
+    StateSet::Mask right;
+    StateSet::Mask left;
+  };
+  const Informative& informative(StateSet x);
+  std::unordered_map<StateSet::Mask, Informative> informative_;
   std::vector<Triple> queue_;
 };
 
