@@ -222,6 +222,10 @@ void CognitiveMap::assimilate(ViewId view, const Action& action, ViewId result) 
   assimilate_boundaries();
 }
 
+void CognitiveMap::recognise(ViewId view, double alpha_deg, ViewId other) {
+  if (view != other) assimilate_turn(view, alpha_deg, other);
+}
+
 std::optional<PlaceId> CognitiveMap::place(ViewId view) const {
   const auto it = views_.find(view);
   return it == views_.end() ? std::nullopt : it->second.place;

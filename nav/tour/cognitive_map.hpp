@@ -58,6 +58,9 @@ class CognitiveMap {
 
   /// Assimilates one <V, A, V'>.
   void assimilate(ViewId view, const Action& action, ViewId result);
+  /// Place recognition from outside the stream (NX's place matching): `other` is seen from the same
+  /// place as `view` after turning `alpha_deg`. Like a turn, without entering the schema history.
+  void recognise(ViewId view, double alpha_deg, ViewId other);
 
   // The topological map.
   [[nodiscard]] std::optional<PlaceId> place(ViewId view) const;
