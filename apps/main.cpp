@@ -12,6 +12,7 @@
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/nx_command.hpp"
 #include "apps/qrm_command.hpp"
 #include "apps/run_command.hpp"
 #include "apps/sim_command.hpp"
@@ -63,6 +64,8 @@ int run_main(int argc, char** argv) {
   CLI::App* nav = add_nav_command(app, nav_args);
   QrmArgs qrm_args;
   CLI::App* qrm = add_qrm_command(app, qrm_args);
+  NxArgs nx_args;
+  CLI::App* nx = add_nx_command(app, nx_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -70,7 +73,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map, nav, qrm; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, nx; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -99,6 +102,10 @@ int run_main(int argc, char** argv) {
   if (qrm->parsed()) {
     const auto subs = qrm->get_subcommands();
     return guarded("qrm " + subs.front()->get_name(), [&] { return qrm_command(*qrm, qrm_args); });
+  }
+  if (nx->parsed()) {
+    const auto subs = nx->get_subcommands();
+    return guarded("nx " + subs.front()->get_name(), [&] { return nx_command(*nx, nx_args); });
   }
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();

@@ -33,7 +33,7 @@ NxJourney travel_to_place(Robot& robot, const LearnedMap& map, std::size_t start
   };
   if (climb_to_place(robot).ending != ClimbEnding::place) return end(JourneyEnding::not_at_start, "no place here");
   const std::optional<PlaceView> here = describe_place(robot);
-  if (!here || !map.could_be(start, *here, c.match_tolerance, c.heading_tolerance_deg)) {
+  if (!here || !map.range_fits(start, *here, c.match_tolerance)) {
     return end(JourneyEnding::not_at_start, "this place does not look like the start");
   }
   std::size_t at = start;
@@ -54,7 +54,8 @@ NxJourney travel_to_place(Robot& robot, const LearnedMap& map, std::size_t start
     }
     const std::optional<PlaceView> view = describe_place(robot);
     if (!view) return end(JourneyEnding::lost, "no place at the end of the edge");
-    if (map.could_be(s.to_place, *view, c.match_tolerance, c.heading_tolerance_deg)) {
+    if (map.could_be(s.to_place, *view, c.match_tolerance, c.heading_tolerance_deg) ||
+        map.range_fits(s.to_place, *view, c.match_tolerance)) {
       at = s.to_place;
     } else {
       const std::vector<std::size_t> fits = map.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);

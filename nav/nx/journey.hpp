@@ -1,7 +1,7 @@
 #pragma once
 // NX travelling by its learned map (qualnav.md §9): from a place it is told it stands at, to a goal
 // place, edge by edge (shortest by the edges' lengths), hill-climbing at every place and checking
-// that it is the place the map expects. At an unexpected place it re-localises among the places its
+// that it is the place the map expects (its range agrees within 10 %). At an unexpected place it re-localises among the places its
 // description fits (best range agreement) and re-plans; with none it is lost. At the goal it
 // measures the marble nearest a given compass bearing.
 

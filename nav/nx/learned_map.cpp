@@ -46,6 +46,11 @@ bool LearnedMap::could_be(std::size_t p, const PlaceView& view, double tolerance
   return true;
 }
 
+bool LearnedMap::range_fits(std::size_t p, const PlaceView& view, double tolerance) const {
+  const double known = places_.at(p).view.range;
+  return std::abs(view.range - known) <= tolerance * known;
+}
+
 std::vector<std::size_t> LearnedMap::candidates(const PlaceView& view, double tolerance,
                                                 double heading_tolerance_deg) const {
   std::vector<std::size_t> out;

@@ -44,6 +44,9 @@ class LearnedMap {
   /// agreeing with one of p's within `heading_tolerance_deg`.
   [[nodiscard]] bool could_be(std::size_t p, const PlaceView& view, double tolerance,
                               double heading_tolerance_deg) const;
+  /// Whether `view` could be place p by its range alone (within `tolerance`, a fraction): what NX asks
+  /// of the place a known edge is expected to lead to, whose edge headings noise may blur.
+  [[nodiscard]] bool range_fits(std::size_t p, const PlaceView& view, double tolerance) const;
   /// Every place `view` could be, best range agreement first.
   [[nodiscard]] std::vector<std::size_t> candidates(const PlaceView& view, double tolerance,
                                                     double heading_tolerance_deg) const;
