@@ -227,7 +227,7 @@ Travel NxSystem::travel(const Plan& plan, Equipment& equipment, Witness& witness
   }
   t.ending = nx_ending(j.ending);
   t.reason = j.reason;
-  t.recoveries = j.relocalisations;
+  t.recoveries = j.relocalisations + j.detours;
   t.frames = robot.frames();
   t.details = std::move(j);
   return t;
@@ -276,6 +276,7 @@ json nx_trials_json(const NxSystem& system, const std::vector<std::unique_ptr<Pl
       j["places"] = report->places;
       j["legs"] = report->legs;
       j["relocalisations"] = report->relocalisations;
+      j["detours"] = report->detours;
     }
     journeys.push_back(std::move(j));
   }

@@ -133,7 +133,7 @@ class Exploration {
       lost_ = true;
       return false;
     }
-    if (!map_.could_be(q, *view, c.match_tolerance, c.heading_tolerance_deg) && !map_.range_fits(q, *view, c.match_tolerance)) {
+    if (!map_.could_be(q, *view, c.match_tolerance, 2 * c.heading_tolerance_deg)) {
       // Somewhere else: the best-fitting known place, if any.
       const std::vector<std::size_t> fits = map_.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);
       if (fits.empty()) {

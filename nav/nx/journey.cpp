@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <utility>
 
 namespace neopipe::nav::nx {
 
@@ -38,24 +40,34 @@ NxJourney travel_to_place(Robot& robot, const LearnedMap& map, std::size_t start
   }
   std::size_t at = start;
   j.places.push_back(at);
+  std::set<std::pair<std::size_t, int>> failed;  // legs that did not arrive, avoided from then on
   const int max_legs = 3 * static_cast<int>(map.size()) + 10;
   while (at != goal) {
     if (j.legs >= max_legs) return end(JourneyEnding::leg_limit, "too many legs");
-    const std::vector<Leg> route = map.route(at, goal);
-    if (route.empty()) return end(JourneyEnding::no_route, "the map has no route from here");
+    const std::vector<Leg> route = map.route(at, goal, failed);
+    if (route.empty()) {
+      return end(j.detours > 0 ? JourneyEnding::lost : JourneyEnding::no_route,
+                 j.detours > 0 ? "no route left around the edges that failed" : "the map has no route from here");
+    }
     const Leg& leg = route.front();
     const Slot& s = map.place(leg.place).slots.at(static_cast<std::size_t>(leg.slot));
     robot.read_heading();
     const EdgeRun run = follow_edge(robot, s.heading_deg);
     ++j.legs;
     if (run.ending != EdgeEnding::arrived) {
-      return end(run.ending == EdgeEnding::blocked ? JourneyEnding::blocked : JourneyEnding::lost,
-                 "the edge did not lead to a place");
+      // Recovery: back to the place by dead reckoning and a climb, and plan around this edge.
+      if (retrace(robot, run).ending != ClimbEnding::place) {
+        return end(run.ending == EdgeEnding::blocked ? JourneyEnding::blocked : JourneyEnding::lost,
+                   "the edge did not lead to a place, and no way back");
+      }
+      failed.insert({leg.place, leg.slot});
+      ++j.detours;
+      continue;
     }
     const std::optional<PlaceView> view = describe_place(robot);
     if (!view) return end(JourneyEnding::lost, "no place at the end of the edge");
-    if (map.could_be(s.to_place, *view, c.match_tolerance, c.heading_tolerance_deg) ||
-        map.range_fits(s.to_place, *view, c.match_tolerance)) {
+    // The expected place: its headings may be blurred by noise, so twice the matching tolerance.
+    if (map.could_be(s.to_place, *view, c.match_tolerance, 2 * c.heading_tolerance_deg)) {
       at = s.to_place;
     } else {
       const std::vector<std::size_t> fits = map.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);

@@ -2,7 +2,8 @@
 // NX travelling by its learned map (qualnav.md §9): from a place it is told it stands at, to a goal
 // place, edge by edge (shortest by the edges' lengths), hill-climbing at every place and checking
 // that it is the place the map expects (its range agrees within 10 %). At an unexpected place it re-localises among the places its
-// description fits (best range agreement) and re-plans; with none it is lost. At the goal it
+// description fits (best range agreement) and re-plans; with none it is lost. An edge that does not
+// lead to a place is retraced (dead reckoning, then a climb) and avoided from then on. At the goal it
 // measures the marble nearest a given compass bearing.
 
 #include <Eigen/Core>
@@ -26,6 +27,7 @@ struct NxJourney {
   std::vector<std::size_t> places;  ///< visited, the start first
   int legs = 0;
   int relocalisations = 0;
+  int detours = 0;  ///< edges that did not arrive: NX went back and planned around them
 };
 
 /// Travels from place `start` (where the robot has been put, near it) to place `goal`.

@@ -63,7 +63,7 @@ std::vector<std::size_t> LearnedMap::candidates(const PlaceView& view, double to
   return out;
 }
 
-std::vector<double> LearnedMap::distances(std::size_t from) const {
+std::vector<double> LearnedMap::distances(std::size_t from, const std::set<std::pair<std::size_t, int>>& avoid) const {
   std::vector<double> dist(places_.size(), std::numeric_limits<double>::infinity());
   using Item = std::pair<double, std::size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
@@ -73,8 +73,11 @@ std::vector<double> LearnedMap::distances(std::size_t from) const {
     const auto [d, p] = queue.top();
     queue.pop();
     if (d > dist[p]) continue;
-    for (const Slot& s : places_[p].slots) {
+    for (std::size_t k = 0; k < places_[p].slots.size(); ++k) {
+      const Slot& s = places_[p].slots[k];
       if (s.state != SlotState::explored) continue;
+      // Distances run backwards from the goal: the leg that would be travelled is (to_place, to_slot).
+      if (avoid.contains({s.to_place, s.to_slot})) continue;
       const double nd = d + s.length;
       if (nd < dist[s.to_place]) {
         dist[s.to_place] = nd;
@@ -85,10 +88,10 @@ std::vector<double> LearnedMap::distances(std::size_t from) const {
   return dist;
 }
 
-std::vector<Leg> LearnedMap::route(std::size_t from, std::size_t to) const {
+std::vector<Leg> LearnedMap::route(std::size_t from, std::size_t to, const std::set<std::pair<std::size_t, int>>& avoid) const {
   if (from == to || from >= places_.size() || to >= places_.size()) return {};
   // Dijkstra backwards from the goal, then walk forward greedily along the distance field.
-  const std::vector<double> to_goal = distances(to);
+  const std::vector<double> to_goal = distances(to, avoid);
   if (!std::isfinite(to_goal[from])) return {};
   std::vector<Leg> legs;
   std::size_t at = from;
@@ -97,7 +100,7 @@ std::vector<Leg> LearnedMap::route(std::size_t from, std::size_t to) const {
     double best_d = std::numeric_limits<double>::infinity();
     const auto& slots = places_[at].slots;
     for (std::size_t s = 0; s < slots.size(); ++s) {
-      if (slots[s].state != SlotState::explored) continue;
+      if (slots[s].state != SlotState::explored || avoid.contains({at, static_cast<int>(s)})) continue;
       const double d = slots[s].length + to_goal[slots[s].to_place];
       if (d < best_d - 1e-9) {
         best = static_cast<int>(s);

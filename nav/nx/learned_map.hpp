@@ -5,6 +5,8 @@
 // by edge length over explored edges.
 
 #include <cstddef>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "nav/nx/controls.hpp"
@@ -44,17 +46,17 @@ class LearnedMap {
   /// agreeing with one of p's within `heading_tolerance_deg`.
   [[nodiscard]] bool could_be(std::size_t p, const PlaceView& view, double tolerance,
                               double heading_tolerance_deg) const;
-  /// Whether `view` could be place p by its range alone (within `tolerance`, a fraction): what NX asks
-  /// of the place a known edge is expected to lead to, whose edge headings noise may blur.
+  /// Whether `view` could be place p by its range alone (within `tolerance`, a fraction).
   [[nodiscard]] bool range_fits(std::size_t p, const PlaceView& view, double tolerance) const;
   /// Every place `view` could be, best range agreement first.
   [[nodiscard]] std::vector<std::size_t> candidates(const PlaceView& view, double tolerance,
                                                     double heading_tolerance_deg) const;
   /// The legs from `from` to `to` over explored edges, shortest by length; empty when none (or
   /// from == to).
-  [[nodiscard]] std::vector<Leg> route(std::size_t from, std::size_t to) const;
+  /// `avoid`: legs not to use (edges that failed).
+  [[nodiscard]] std::vector<Leg> route(std::size_t from, std::size_t to, const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
   /// Path length of the shortest route from `from` to every place (infinity: unreachable).
-  [[nodiscard]] std::vector<double> distances(std::size_t from) const;
+  [[nodiscard]] std::vector<double> distances(std::size_t from, const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
 
   [[nodiscard]] std::size_t size() const { return places_.size(); }
   [[nodiscard]] const LearnedPlace& place(std::size_t i) const { return places_.at(i); }
