@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <set>
 #include <utility>
 
 namespace neopipe::nav::nx {
@@ -14,7 +15,7 @@ tour::ViewId nx_view(std::size_t place, int slot, bool arrived) {
 namespace {
 
 // Known edges that may fail to lead where the map says before the exploration gives up.
-constexpr int kMaxDetours = 5;
+constexpr int kMaxDetours = 50;
 
 // The explorer's state across one run.
 class Exploration {
@@ -35,13 +36,13 @@ class Exploration {
       const std::optional<Leg> next = nearest_unexplored();
       if (!next) return finish("agenda empty");
       bool on_route = true;
-      for (const Leg& leg : map_.route(at_, next->place)) {
+      for (const Leg& leg : map_.route(at_, next->place, failed_)) {
         if (!travel_known(leg)) {
           on_route = false;
           break;
         }
       }
-      if (lost_) return finish("lost: a known edge led to an unknown place");
+      if (lost_) return finish("lost: no way back from an edge");
       if (!on_route) {
         // Re-localised (or back where the leg began): plan again, a few times at most.
         if (++detours_ > kMaxDetours) return finish("lost: known edges keep leading elsewhere");
@@ -81,7 +82,7 @@ class Exploration {
 
   // The unexplored (place, edge) pair nearest by the map, earliest place and slot on ties.
   std::optional<Leg> nearest_unexplored() const {
-    const std::vector<double> d = map_.distances(at_);
+    const std::vector<double> d = map_.distances(at_, failed_);
     std::optional<Leg> best;
     double best_d = std::numeric_limits<double>::infinity();
     for (std::size_t p = 0; p < map_.size(); ++p) {
@@ -123,8 +124,8 @@ class Exploration {
     robot_.read_heading();
     const EdgeRun run = follow_edge(robot_, s.heading_deg);
     if (run.ending != EdgeEnding::arrived) {
-      if (!climb_after_retrace(run)) return false;
-      at_ = leg.place;
+      avoid(leg.place, leg.slot);
+      if (climb_after_retrace(run)) at_ = leg.place;
       return false;
     }
     const std::optional<PlaceView> view = describe_place(robot_);
@@ -133,11 +134,13 @@ class Exploration {
       lost_ = true;
       return false;
     }
-    if (!map_.could_be(q, *view, c.match_tolerance, 2 * c.heading_tolerance_deg)) {
+    if (!map_.could_be(q, *view, c.match_tolerance, 2 * c.heading_tolerance_deg, 2)) {
       // Somewhere else: the best-fitting known place, if any.
       const std::vector<std::size_t> fits = map_.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);
       if (fits.empty()) {
-        lost_ = true;
+        // Nowhere known: back along the edge by dead reckoning, and avoid it from now on.
+        avoid(leg.place, leg.slot);
+        if (climb_after_retrace(run)) at_ = leg.place;
       } else {
         at_ = fits.front();
         facing_ = {nx_view(at_, 0, false), map_.place(at_).slots.at(0).heading_deg};
@@ -150,7 +153,8 @@ class Exploration {
   }
 
   // The return trip that tests "here is place q": along another explored edge of q to its known
-  // neighbour, then back. nullopt: q has no such edge (nothing to test).
+  // neighbour, then back. A trip that ends at a place unlike that neighbour refutes q; one that
+  // ends at no place proves nothing (the next edge is tried). nullopt: nothing could be tested.
   std::optional<bool> test_match(std::size_t q, int arrival_slot) {
     const NxConfig& c = robot_.config();
     const auto& slots = map_.place(q).slots;
@@ -161,7 +165,7 @@ class Exploration {
       const EdgeRun out = follow_edge(robot_, slots[k].heading_deg);
       std::optional<PlaceView> there;
       if (out.ending == EdgeEnding::arrived) there = describe_place(robot_);
-      const bool confirmed = there && map_.could_be(r, *there, c.match_tolerance, c.heading_tolerance_deg);
+      const bool confirmed = there && map_.could_be(r, *there, c.match_tolerance, 2 * c.heading_tolerance_deg, 2);
       bool back = false;
       if (there) {
         const auto [back_slot, off] = nearest_slot(*there, out.arrival_heading_deg + 180);
@@ -171,6 +175,7 @@ class Exploration {
       }
       if (!back) retrace(robot_, out);
       if (confirmed && back) trip_ = Trip{q, static_cast<int>(k), out};
+      if (!there || (confirmed && !back)) continue;  // inconclusive
       return confirmed;
     }
     return std::nullopt;
@@ -235,6 +240,13 @@ class Exploration {
     tell_tour_arrival(s.to_place, s.to_slot, t.place, t.slot, back);
   }
 
+  // A known edge that failed: neither direction is used again.
+  void avoid(std::size_t p, int slot) {
+    const Slot& s = map_.place(p).slots.at(static_cast<std::size_t>(slot));
+    failed_.insert({p, slot});
+    failed_.insert({s.to_place, s.to_slot});
+  }
+
   bool climb_after_retrace(const EdgeRun& run) {
     if (retrace(robot_, run).ending == ClimbEnding::place) return true;
     lost_ = true;
@@ -251,6 +263,7 @@ class Exploration {
   Facing facing_;
   bool lost_ = false;
   int detours_ = 0;
+  std::set<std::pair<std::size_t, int>> failed_;  ///< known edges that did not lead where expected
   std::optional<Trip> trip_;
 };
 

@@ -67,7 +67,7 @@ NxJourney travel_to_place(Robot& robot, const LearnedMap& map, std::size_t start
     const std::optional<PlaceView> view = describe_place(robot);
     if (!view) return end(JourneyEnding::lost, "no place at the end of the edge");
     // The expected place: its headings may be blurred by noise, so twice the matching tolerance.
-    if (map.could_be(s.to_place, *view, c.match_tolerance, 2 * c.heading_tolerance_deg)) {
+    if (map.could_be(s.to_place, *view, c.match_tolerance, 2 * c.heading_tolerance_deg, 2)) {
       at = s.to_place;
     } else {
       const std::vector<std::size_t> fits = map.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);

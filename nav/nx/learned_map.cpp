@@ -28,22 +28,23 @@ void LearnedMap::mark(std::size_t p, int slot, SlotState state) {
   places_.at(p).slots.at(static_cast<std::size_t>(slot)).state = state;
 }
 
-bool LearnedMap::could_be(std::size_t p, const PlaceView& view, double tolerance, double heading_tolerance_deg) const {
+bool LearnedMap::could_be(std::size_t p, const PlaceView& view, double tolerance, double heading_tolerance_deg,
+                          std::size_t slots_to_agree) const {
   const PlaceView& known = places_.at(p).view;
   if (std::abs(view.range - known.range) > tolerance * known.range) return false;
-  if (view.slots.size() != known.slots.size()) return false;
+  if (slots_to_agree == 0 && view.slots.size() != known.slots.size()) return false;
   std::vector<bool> used(known.slots.size(), false);
+  std::size_t agreeing = 0;
   for (const double h : view.slots) {
-    bool found = false;
-    for (std::size_t i = 0; i < known.slots.size() && !found; ++i) {
+    for (std::size_t i = 0; i < known.slots.size(); ++i) {
       if (!used[i] && headings_agree(h, known.slots[i], heading_tolerance_deg)) {
         used[i] = true;
-        found = true;
+        ++agreeing;
+        break;
       }
     }
-    if (!found) return false;
   }
-  return true;
+  return slots_to_agree == 0 ? agreeing == known.slots.size() : agreeing >= slots_to_agree;
 }
 
 bool LearnedMap::range_fits(std::size_t p, const PlaceView& view, double tolerance) const {

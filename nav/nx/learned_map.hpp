@@ -44,8 +44,10 @@ class LearnedMap {
 
   /// Whether `view` could be place p: ranges within `tolerance` (fraction) and as many slots, each
   /// agreeing with one of p's within `heading_tolerance_deg`.
-  [[nodiscard]] bool could_be(std::size_t p, const PlaceView& view, double tolerance,
-                              double heading_tolerance_deg) const;
+  /// With `slots_to_agree` > 0, that many slots agreeing suffice (the expected end of a known edge,
+  /// where a fourth marble nearly as near may turn one edge).
+  [[nodiscard]] bool could_be(std::size_t p, const PlaceView& view, double tolerance, double heading_tolerance_deg,
+                              std::size_t slots_to_agree = 0) const;
   /// Whether `view` could be place p by its range alone (within `tolerance`, a fraction).
   [[nodiscard]] bool range_fits(std::size_t p, const PlaceView& view, double tolerance) const;
   /// Every place `view` could be, best range agreement first.

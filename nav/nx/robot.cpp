@@ -83,11 +83,14 @@ std::vector<Neighbour> Robot::neighbours(int count, int reads) {
   const double h = config_.probe_mm;
   const Scan base = look(reads);
   last_scan_ = base;
+  // Each probe goes out and back on its own, so a probe the arm refuses (at its limit) leaves the
+  // robot where it was.
   const bool out_x = move({h, 0});
-  const Scan px = look(reads);
-  const bool out_y = move({-h, h});
-  const Scan py = look(reads);
-  move({0, -h});
+  const Scan px = out_x ? look(reads) : Scan{};
+  if (out_x) move({-h, 0});
+  const bool out_y = move({0, h});
+  const Scan py = out_y ? look(reads) : Scan{};
+  if (out_y) move({0, -h});
   std::vector<int> order;
   for (int k = 0; k < kSectors; ++k) {
     if (base[static_cast<std::size_t>(k)] > 0) order.push_back(k);

@@ -6,7 +6,7 @@
 // Gradients. A range r_i to marble i changes as −u_i · d when the robot moves by d (u_i the unit
 // vector toward the marble), so its gradient is a unit vector pointing away from the marble. NX
 // measures it by finite differences: it looks at its position and at two probes h mm along the
-// tool's x and y axes (3 moves there and back), each look the mean of `reads` frames. A range is
+// tool's x and y axes (out and back, 4 moves), each look the mean of `reads` frames. A range is
 // followed from one look to the next in its own sector when that sector's value stays within
 // tolerance, else in a neighbouring sector (a marble whose bearing crosses a sector edge).
 
