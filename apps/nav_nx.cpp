@@ -105,7 +105,8 @@ int nx_one_journey(const NavArgs& a, const sim::World& world, const rig::NxSyste
 }
 
 int nx_trials(const NavArgs& a, const sim::World& world, const rig::NxSystem& system) {
-  const std::vector<std::unique_ptr<rig::Plan>> plans = rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
+  const std::vector<std::unique_ptr<rig::Plan>> plans =
+      rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
   ProgressBar bar("nav", std::ssize(plans), true);
   const rig::TrialsSummary t = rig::run_trials(system, plans, world, nx_journey_settings(a), a.threads,
                                                [&](std::int64_t done) { bar.update(done); });

@@ -33,9 +33,8 @@ constexpr double kNxStartInsetMm = 40;
 
 void check_nx_marbles(const sim::World& world) {
   if (world.objects.size() < 3) {
-    throw std::invalid_argument(
-        fmt::format("NX needs at least three marbles (a place is equidistant from three); the world has {}",
-                    world.objects.size()));
+    throw std::invalid_argument(fmt::format(
+        "NX needs at least three marbles (a place is equidistant from three); the world has {}", world.objects.size()));
   }
 }
 

@@ -32,11 +32,11 @@
 namespace neopipe::rig {
 
 struct NxSettings {
-  std::uint64_t seed = 1;       ///< the exploration's start and its sensor and arm noise
-  double range_error = 0.10;    ///< the range ring's relative error bound (0: off)
-  ArmErrors arm;                ///< the arm's errors while exploring
+  std::uint64_t seed = 1;     ///< the exploration's start and its sensor and arm noise
+  double range_error = 0.10;  ///< the range ring's relative error bound (0: off)
+  ArmErrors arm;              ///< the arm's errors while exploring
   nav::nx::ExploreSettings explore;
-  int goal_reads = 32;          ///< frames per look when measuring the goal marble
+  int goal_reads = 32;  ///< frames per look when measuring the goal marble
 };
 
 /// NX's control settings for a sensor with this relative error: exact finite differences without
@@ -65,7 +65,7 @@ NxExploration explore_world(const sim::World& world, const NxSettings& settings,
 struct NxPlan final : Plan {
   std::size_t start_place = 0;
   std::size_t goal_place = 0;
-  double goal_bearing_deg = 0;  ///< J's compass bearing from the goal place
+  double goal_bearing_deg = 0;     ///< J's compass bearing from the goal place
   std::vector<std::size_t> route;  ///< learned places, start first
 };
 

@@ -132,26 +132,20 @@ VoronoiComparison compare_with_voronoi(const NxExploration& e, const VoronoiGrap
 
 nlohmann::json voronoi_comparison_json(const VoronoiComparison& c) {
   const double max_error = c.place_errors.empty() ? 0 : *std::max_element(c.place_errors.begin(), c.place_errors.end());
-  const double mean_error = c.place_errors.empty() ? 0
-                                                   : std::accumulate(c.place_errors.begin(), c.place_errors.end(), 0.0) /
-                                                         static_cast<double>(c.place_errors.size());
+  const double mean_error = c.place_errors.empty()
+                                ? 0
+                                : std::accumulate(c.place_errors.begin(), c.place_errors.end(), 0.0) /
+                                      static_cast<double>(c.place_errors.size());
   const auto within = [&](double r) {
     return std::count_if(c.place_errors.begin(), c.place_errors.end(), [&](double d) { return d <= r; });
   };
-  return {{"match_radius_mm", c.match_radius_mm},
-          {"place_errors_mm", c.place_errors},
-          {"max_place_error_mm", max_error},
-          {"mean_place_error_mm", mean_error},
-          {"places_within_2mm", within(2)},
-          {"places_within_match_radius", within(c.match_radius_mm)},
-          {"true_vertices", c.true_vertices},
-          {"vertices_found", c.vertices_found},
-          {"true_edges", c.true_edges},
-          {"learned_edges", c.learned_edges},
-          {"edges_found", c.edges_found},
-          {"edges_wrong", c.edges_wrong},
-          {"edges_missed", c.edges_missed},
-          {"edges_too_narrow", c.edges_too_narrow}};
+  return {{"match_radius_mm", c.match_radius_mm}, {"place_errors_mm", c.place_errors},
+          {"max_place_error_mm", max_error},      {"mean_place_error_mm", mean_error},
+          {"places_within_2mm", within(2)},       {"places_within_match_radius", within(c.match_radius_mm)},
+          {"true_vertices", c.true_vertices},     {"vertices_found", c.vertices_found},
+          {"true_edges", c.true_edges},           {"learned_edges", c.learned_edges},
+          {"edges_found", c.edges_found},         {"edges_wrong", c.edges_wrong},
+          {"edges_missed", c.edges_missed},       {"edges_too_narrow", c.edges_too_narrow}};
 }
 
 }  // namespace neopipe::rig

@@ -187,7 +187,7 @@ EdgeRun follow_edge(Robot& robot, double heading_deg) {
         }
         continue;
       }
-      run.ending = climb.ending == ClimbEnding::place ? EdgeEnding::arrived
+      run.ending = climb.ending == ClimbEnding::place       ? EdgeEnding::arrived
                    : climb.ending == ClimbEnding::too_close ? EdgeEnding::blocked
                                                             : EdgeEnding::open;
       break;

@@ -8,9 +8,9 @@
 // gradients (each step at most max_climb_step_mm), so that it ends on the vertex, not merely near
 // it. Edge following advances step_mm along the edge and corrects across it toward r1 = r2; it
 // hill-climbs once the third range comes within arrival_gap_mm of the nearest while that gap
-// shrinks (near the next place, whose triple of marbles is then the nearest three). An edge that leaves the sensor's reach (fewer than two marbles in
-// view) or runs longer than max_edge_mm is open (the open world's edges run to infinity); one that
-// passes within clearance_mm of a marble, or hits the arm's limit, is blocked.
+// shrinks (near the next place, whose triple of marbles is then the nearest three). An edge that leaves the sensor's
+// reach (fewer than two marbles in view) or runs longer than max_edge_mm is open (the open world's edges run to
+// infinity); one that passes within clearance_mm of a marble, or hits the arm's limit, is blocked.
 
 #include <Eigen/Core>
 #include <optional>
@@ -48,9 +48,9 @@ enum class EdgeEnding { arrived, open, blocked };
 
 struct EdgeRun {
   EdgeEnding ending = EdgeEnding::open;
-  double length = 0;                 ///< mm advanced along the edge
-  double dtheta_deg = 0;             ///< net change of the direction of travel, compass degrees
-  double arrival_heading_deg = 0;    ///< direction of travel at the end, compass degrees
+  double length = 0;                   ///< mm advanced along the edge
+  double dtheta_deg = 0;               ///< net change of the direction of travel, compass degrees
+  double arrival_heading_deg = 0;      ///< direction of travel at the end, compass degrees
   std::vector<Eigen::Vector2d> moves;  ///< every move made (tool frame), the final climb's included
   Eigen::Vector2d displacement = Eigen::Vector2d::Zero();
 };

@@ -65,7 +65,7 @@ class Exploration {
   };
 
   ExploreReport finish(const char* ending) {
-      report_.ending = ending;
+    report_.ending = ending;
     report_.places = map_.size();
     report_.edges = map_.edges();
     report_.moves = robot_.moves();
@@ -100,7 +100,8 @@ class Exploration {
   void tell_tour_departure(std::size_t p, int slot) {
     const tour::ViewId v = nx_view(p, slot, false);
     const double heading = map_.place(p).slots.at(static_cast<std::size_t>(slot)).heading_deg;
-    if (tour_ != nullptr && facing_.view != v) tour_->assimilate(facing_.view, tour::Turn{wrap180(heading - facing_.heading)}, v);
+    if (tour_ != nullptr && facing_.view != v)
+      tour_->assimilate(facing_.view, tour::Turn{wrap180(heading - facing_.heading)}, v);
     facing_ = {v, heading};
   }
 

@@ -1,10 +1,10 @@
 #pragma once
 // NX travelling by its learned map (qualnav.md §9): from a place it is told it stands at, to a goal
 // place, edge by edge (shortest by the edges' lengths), hill-climbing at every place and checking
-// that it is the place the map expects (its range agrees within 10 %). At an unexpected place it re-localises among the places its
-// description fits (best range agreement) and re-plans; with none it is lost. An edge that does not
-// lead to a place is retraced (dead reckoning, then a climb) and avoided from then on. At the goal it
-// measures the marble nearest a given compass bearing.
+// that it is the place the map expects (its range agrees within 10 %). At an unexpected place it re-localises among the
+// places its description fits (best range agreement) and re-plans; with none it is lost. An edge that does not lead to
+// a place is retraced (dead reckoning, then a climb) and avoided from then on. At the goal it measures the marble
+// nearest a given compass bearing.
 
 #include <Eigen/Core>
 #include <cstddef>

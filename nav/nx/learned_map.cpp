@@ -89,7 +89,8 @@ std::vector<double> LearnedMap::distances(std::size_t from, const std::set<std::
   return dist;
 }
 
-std::vector<Leg> LearnedMap::route(std::size_t from, std::size_t to, const std::set<std::pair<std::size_t, int>>& avoid) const {
+std::vector<Leg> LearnedMap::route(std::size_t from, std::size_t to,
+                                   const std::set<std::pair<std::size_t, int>>& avoid) const {
   if (from == to || from >= places_.size() || to >= places_.size()) return {};
   // Dijkstra backwards from the goal, then walk forward greedily along the distance field.
   const std::vector<double> to_goal = distances(to, avoid);

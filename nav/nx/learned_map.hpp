@@ -56,9 +56,11 @@ class LearnedMap {
   /// The legs from `from` to `to` over explored edges, shortest by length; empty when none (or
   /// from == to).
   /// `avoid`: legs not to use (edges that failed).
-  [[nodiscard]] std::vector<Leg> route(std::size_t from, std::size_t to, const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
+  [[nodiscard]] std::vector<Leg> route(std::size_t from, std::size_t to,
+                                       const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
   /// Path length of the shortest route from `from` to every place (infinity: unreachable).
-  [[nodiscard]] std::vector<double> distances(std::size_t from, const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
+  [[nodiscard]] std::vector<double> distances(std::size_t from,
+                                              const std::set<std::pair<std::size_t, int>>& avoid = {}) const;
 
   [[nodiscard]] std::size_t size() const { return places_.size(); }
   [[nodiscard]] const LearnedPlace& place(std::size_t i) const { return places_.at(i); }

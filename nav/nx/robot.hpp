@@ -25,18 +25,18 @@ inline constexpr int kSectors = 16;
 inline constexpr double kSectorDeg = 22.5;
 
 struct NxConfig {
-  double probe_mm = 1.0;          ///< h of the finite differences
-  int reads = 1;                  ///< frames averaged per look (more under range noise)
-  double range_error = 0;         ///< the sensor's stated bound of relative error (its datasheet)
-  int compass_reads = 16;         ///< readings averaged when NX re-reads its heading at a place
+  double probe_mm = 1.0;             ///< h of the finite differences
+  int reads = 1;                     ///< frames averaged per look (more under range noise)
+  double range_error = 0;            ///< the sensor's stated bound of relative error (its datasheet)
+  int compass_reads = 16;            ///< readings averaged when NX re-reads its heading at a place
   double place_tolerance_mm = 0.05;  ///< hill-climbing stops when its step and spread are below this
   int max_climb_steps = 25;
   double max_climb_step_mm = 8;
-  double step_mm = 4;             ///< edge following: advance per step
-  double arrival_gap_mm = 10;     ///< edge following: hill-climb once the third range is this close
-  double max_edge_mm = 400;       ///< edge following: a longer edge is a dead end (open world)
-  double clearance_mm = 11;       ///< never closer than this to a marble's surface (>= 10 mm, §2)
-  double match_tolerance = 0.10;  ///< place matching: ranges agree within this fraction
+  double step_mm = 4;                 ///< edge following: advance per step
+  double arrival_gap_mm = 10;         ///< edge following: hill-climb once the third range is this close
+  double max_edge_mm = 400;           ///< edge following: a longer edge is a dead end (open world)
+  double clearance_mm = 11;           ///< never closer than this to a marble's surface (>= 10 mm, §2)
+  double match_tolerance = 0.10;      ///< place matching: ranges agree within this fraction
   double heading_tolerance_deg = 15;  ///< place matching and slots: edge headings agree within this
 };
 

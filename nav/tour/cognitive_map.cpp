@@ -109,8 +109,7 @@ void CognitiveMap::constrain_heading(ViewId from, Interval change, ViewId to) {
   } else if (a.heading && b.heading) {
     Interval implied = shifted(*a.heading, change);
     // Headings are angles: compare the implied interval with the held one a whole turn apart at most.
-    const double turns =
-        std::round(((b.heading->lo + b.heading->hi) - (implied.lo + implied.hi)) / 2 / 360);
+    const double turns = std::round(((b.heading->lo + b.heading->hi) - (implied.lo + implied.hi)) / 2 / 360);
     implied = shifted(implied, {360 * turns, 360 * turns});
     const Interval meet{std::max(implied.lo, b.heading->lo), std::min(implied.hi, b.heading->hi)};
     if (meet.lo <= meet.hi) {
@@ -180,7 +179,7 @@ void CognitiveMap::assimilate_travel(ViewId view, const Travel& travel, ViewId r
   position_.emplace(std::make_pair(p2, path), pos2);  // an earlier position stays
   links_.push_back({p1, p2, travel.distance});
   if (h.travel_is_distance) straight_[{std::min(p1, p2), std::max(p1, p2)}] = travel.distance;
-  const Interval change = h.straight_travel ? Interval{0, 0}
+  const Interval change = h.straight_travel   ? Interval{0, 0}
                           : travel.dtheta_deg ? Interval{*travel.dtheta_deg, *travel.dtheta_deg}
                                               : kAnyTurn;
   constrain_heading(view, change, result);

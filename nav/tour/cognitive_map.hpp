@@ -41,10 +41,10 @@ struct Interval {
 
 /// The paper's heuristics that predictably distort the map ("Distorted Cognitive Maps").
 struct DistortionHeuristics {
-  bool right_angles = false;               ///< (1) a turn near ±90° is exactly ±90°
-  double right_angle_tolerance_deg = 15;   ///< what "near" means for (1)
-  bool straight_travel = false;            ///< (2) every travel has Δθ = 0
-  bool travel_is_distance = false;         ///< (3) distance(place(V1), place(V2)) = δ
+  bool right_angles = false;              ///< (1) a turn near ±90° is exactly ±90°
+  double right_angle_tolerance_deg = 15;  ///< what "near" means for (1)
+  bool straight_travel = false;           ///< (2) every travel has Δθ = 0
+  bool travel_is_distance = false;        ///< (3) distance(place(V1), place(V2)) = δ
 };
 
 struct TourSettings {

@@ -6,8 +6,8 @@ namespace neopipe::nav::tour {
 namespace {
 
 bool same_schema(const Schema& a, const Schema& b) {
-  const bool actions = a.action.has_value() == b.action.has_value() &&
-                       (!a.action.has_value() || same_action(*a.action, *b.action));
+  const bool actions =
+      a.action.has_value() == b.action.has_value() && (!a.action.has_value() || same_action(*a.action, *b.action));
   return a.goal == b.goal && a.situation == b.situation && actions && a.result == b.result;
 }
 

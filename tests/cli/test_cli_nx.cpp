@@ -54,8 +54,8 @@ TEST_F(NxCli, ExploreWithoutNoiseFindsTrueVertices) {
   EXPECT_EQ(j["truth"]["edges_wrong"], 0);
   EXPECT_EQ(j["tour_places"], j["places"]);
   EXPECT_GT(std::filesystem::file_size(file("x.png")), 1000U);
-  const auto again = run_neopipe({"nx", "explore", "--world", world(), "--range-error", "0", "--sigma-move", "0",
-                                  "--sigma-rot", "0", "--json"});
+  const auto again = run_neopipe(
+      {"nx", "explore", "--world", world(), "--range-error", "0", "--sigma-move", "0", "--sigma-rot", "0", "--json"});
   ASSERT_EQ(again.exit_code, 0) << again.err;
   json a = json::parse(again.out);
   json b = j;
@@ -65,8 +65,8 @@ TEST_F(NxCli, ExploreWithoutNoiseFindsTrueVertices) {
 }
 
 TEST_F(NxCli, TrialsCarryTheSharedKeysAndOneJourneyReachesItsGoal) {
-  const auto t = run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--trials", "4",
-                              "--json"});
+  const auto t =
+      run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--trials", "4", "--json"});
   ASSERT_EQ(t.exit_code, 0) << t.err;
   const json j = json::parse(t.out);
   for (const char* key : {"trials", "outcomes", "reached_goal", "reached_goal_rate", "reached_goal_ci95", "journeys"}) {
@@ -75,29 +75,27 @@ TEST_F(NxCli, TrialsCarryTheSharedKeysAndOneJourneyReachesItsGoal) {
   EXPECT_EQ(j["system"], "nx");
   EXPECT_TRUE(j["nx"].contains("endings"));
   EXPECT_EQ(j["journeys"].size(), 4U);
-  const auto one = run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--sigma-move",
-                                "0", "--sigma-rot", "0", "--from", "0", "--to", "8", "--json", "--plot",
-                                file("j.png")});
+  const auto one = run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--sigma-move", "0",
+                                "--sigma-rot", "0", "--from", "0", "--to", "8", "--json", "--plot", file("j.png")});
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const json o = json::parse(one.out);
   EXPECT_TRUE(o["reached_goal"].get<bool>()) << o.dump();
   EXPECT_EQ(o["ending"], "arrived");
   EXPECT_GT(std::filesystem::file_size(file("j.png")), 1000U);
-  const auto text = run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--from", "0",
-                                 "--to", "8"});
+  const auto text =
+      run_neopipe({"nav", "--system", "nx", "--world", world(), "--range-error", "0", "--from", "0", "--to", "8"});
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("outcome: "), std::string::npos) << text.out;
 }
 
 TEST_F(NxCli, BadInputIsOneLineNamingIt) {
-  expect_one_line_error(run_neopipe({"nx", "explore", "--world", world(), "--range-error", "1.5"}), 2,
-                        "--range-error");
+  expect_one_line_error(run_neopipe({"nx", "explore", "--world", world(), "--range-error", "1.5"}), 2, "--range-error");
   expect_one_line_error(run_neopipe({"nx", "explore", "--world", world(), "--places", "0"}), 2, "--places");
   expect_one_line_error(run_neopipe({"nav", "--system", "nx", "--world", world(), "--trials", "2", "--places", "0"}), 2,
                         "--places");
-  expect_one_line_error(run_neopipe({"nav", "--system", "nx", "--world", world(), "--trials", "2", "--plot",
-                                     file("p.png")}),
-                        2, "--plot");
+  expect_one_line_error(
+      run_neopipe({"nav", "--system", "nx", "--world", world(), "--trials", "2", "--plot", file("p.png")}), 2,
+      "--plot");
   write_text(file("two.yaml"), "size: [100, 100]\nobjects:\n  - [20, 20]\n  - [60, 60]\n");
   expect_one_line_error(run_neopipe({"nx", "explore", "--world", file("two.yaml")}), 1, "three marbles");
   expect_one_line_error(run_neopipe({"nav", "--system", "nx", "--world", file("two.yaml"), "--trials", "2"}), 1,

@@ -29,8 +29,16 @@ sim::World world_of(std::vector<Vector2d> marbles, Vector2d size = {250, 250}) {
 
 // The CLI tests' small world: ten marbles on 250 x 250 mm.
 sim::World small_world() {
-  return world_of({{30, 40}, {120, 30}, {210, 50}, {60, 120}, {150, 110}, {220, 150}, {40, 210}, {110, 190},
-                   {190, 220}, {125, 145}});
+  return world_of({{30, 40},
+                   {120, 30},
+                   {210, 50},
+                   {60, 120},
+                   {150, 110},
+                   {220, 150},
+                   {40, 210},
+                   {110, 190},
+                   {190, 220},
+                   {125, 145}});
 }
 
 rig::StationSettings exact_ring() {
@@ -150,7 +158,8 @@ TEST(NxJourneys, ThroughTheRigReachTheGoalWithNoiseOff) {
   js.errors = {0, 0};
   const rig::TrialsSummary t = rig::run_trials(system, plans, w, js, 2);
   EXPECT_EQ(t.reached(), t.run());
-  for (const rig::TrialRecord& r : t.trials) EXPECT_TRUE(rig::reached_goal(r.outcome)) << r.from << " -> " << r.to << " " << r.reason;
+  for (const rig::TrialRecord& r : t.trials)
+    EXPECT_TRUE(rig::reached_goal(r.outcome)) << r.from << " -> " << r.to << " " << r.reason;
 }
 
 TEST(NxJourneys, UnknownObjectsAndTooFewMarblesAreRefused) {

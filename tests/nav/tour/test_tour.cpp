@@ -129,7 +129,7 @@ TEST(TourMap, OrientationFrameIntervalsAndDistortionSwitches) {
   EXPECT_DOUBLE_EQ(distorted.heading(2)->width(), 0);  // (2) Δθ = 0
   EXPECT_DOUBLE_EQ(distorted.heading(2)->lo, 0);
   distorted.assimilate(2, Turn{-85}, 3);
-  EXPECT_DOUBLE_EQ(*distorted.local_heading(3), -90);  // (1) a right angle
+  EXPECT_DOUBLE_EQ(*distorted.local_heading(3), -90);                                   // (1) a right angle
   EXPECT_DOUBLE_EQ(*distorted.distance(*distorted.place(1), *distorted.place(2)), 10);  // (3)
 }
 
