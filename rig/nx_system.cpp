@@ -70,8 +70,8 @@ class TruthNotes final : public nx::ExploreObserver {
 Vector2d exploration_start(const sim::World& world, std::uint64_t seed) {
   sim::Random random(seed);
   for (int attempt = 0; attempt < 100000; ++attempt) {
-    const Vector2d p(random.uniform(kNxStartInsetMm, world.size.x() - kNxStartInsetMm),
-                     random.uniform(kNxStartInsetMm, world.size.y() - kNxStartInsetMm));
+    Vector2d p(random.uniform(kNxStartInsetMm, world.size.x() - kNxStartInsetMm),
+               random.uniform(kNxStartInsetMm, world.size.y() - kNxStartInsetMm));
     if (sim::keeps_clear(world, p, kNxStartClearanceMm)) return p;
   }
   throw std::invalid_argument("no start for the exploration clear of the marbles");

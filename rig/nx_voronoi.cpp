@@ -32,7 +32,7 @@ double segment_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
 VoronoiGraph true_voronoi(const sim::World& world, double margin_mm) {
   VoronoiGraph g;
   if (world.objects.size() < 3) return g;
-  const float margin = static_cast<float>(std::max(world.size.x(), world.size.y()));
+  const auto margin = static_cast<float>(std::max(world.size.x(), world.size.y()));
   cv::Subdiv2D subdiv(cv::Rect2f(-margin, -margin, static_cast<float>(world.size.x()) + 2 * margin,
                                  static_cast<float>(world.size.y()) + 2 * margin));
   std::vector<cv::Point2f> sites;
@@ -69,7 +69,7 @@ VoronoiGraph true_voronoi(const sim::World& world, double margin_mm) {
       if (a == index.end() || b == index.end() || a->second == b->second) continue;
       const auto e = std::minmax(a->second, b->second);
       if (edges.insert(e).second) {
-        g.edges.push_back(e);
+        g.edges.emplace_back(e);
         g.edge_clearance.push_back(segment_distance(site, g.vertices[e.first], g.vertices[e.second]) -
                                    world.marble_diameter / 2);
       }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <ranges>
 
 namespace neopipe::nav::nx {
 namespace {
@@ -218,7 +219,7 @@ EdgeRun follow_edge(Robot& robot, double heading_deg) {
 }
 
 Climb retrace(Robot& robot, const EdgeRun& run) {
-  for (auto it = run.moves.rbegin(); it != run.moves.rend(); ++it) robot.move(-*it);
+  for (const Eigen::Vector2d& move : std::ranges::reverse_view(run.moves)) robot.move(-move);
   return climb_to_place(robot);
 }
 

@@ -74,8 +74,7 @@ std::vector<double> LearnedMap::distances(std::size_t from, const std::set<std::
     const auto [d, p] = queue.top();
     queue.pop();
     if (d > dist[p]) continue;
-    for (std::size_t k = 0; k < places_[p].slots.size(); ++k) {
-      const Slot& s = places_[p].slots[k];
+    for (const Slot& s : places_[p].slots) {
       if (s.state != SlotState::explored) continue;
       // Distances run backwards from the goal: the leg that would be travelled is (to_place, to_slot).
       if (avoid.contains({s.to_place, s.to_slot})) continue;

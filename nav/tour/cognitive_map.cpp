@@ -256,6 +256,7 @@ std::vector<PlaceId> CognitiveMap::places_on(PathId path) const {
   }
   std::sort(on.begin(), on.end());
   std::vector<PlaceId> out;
+  out.reserve(on.size());
   for (const auto& [pos, p] : on) out.push_back(p);
   return out;
 }
