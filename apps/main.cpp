@@ -14,6 +14,7 @@
 #include "apps/map_command.hpp"
 #include "apps/map_stats_command.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/nx_command.hpp"
 #include "apps/qrm_command.hpp"
 #include "apps/qualnav_command.hpp"
 #include "apps/run_command.hpp"
@@ -72,6 +73,8 @@ int run_main(int argc, char** argv) {
   CLI::App* compare = add_compare_command(app, compare_args);
   BatchArgs batch_args;
   CLI::App* batch = add_batch_command(app, batch_args);
+  NxArgs nx_args;
+  CLI::App* nx = add_nx_command(app, nx_args);
   // FFmpeg's own log lines would interleave with neopipe's one-line errors; the user can still ask
   // for them by setting the variable.
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);
@@ -79,7 +82,7 @@ int run_main(int argc, char** argv) {
     const auto known = app.get_subcommands([&](const CLI::App* c) { return c->check_name(argv[1]); });
     if (known.empty()) {
       print_error("", std::string("unknown command '") + argv[1] +
-                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav, compare, batch; see neopipe --help)");
+                          "' (commands: run, bench, calibrate, sim, map, nav, qrm, qualnav, compare, batch, nx; see neopipe --help)");
       return kExitUsage;
     }
   }
@@ -117,6 +120,10 @@ int run_main(int argc, char** argv) {
   if (batch->parsed()) {
     const auto subs = batch->get_subcommands();
     return guarded("batch " + subs.front()->get_name(), [&] { return batch_command(*batch, batch_args); });
+  }
+  if (nx->parsed()) {
+    const auto subs = nx->get_subcommands();
+    return guarded("nx " + subs.front()->get_name(), [&] { return nx_command(*nx, nx_args); });
   }
   if (sim->parsed()) {
     const auto subs = sim->get_subcommands();

@@ -284,8 +284,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
   cmd->add_option("--system", a.system,
                   "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
-                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first")
-      ->check(CLI::IsMember({"park-kender", "qrm"}))
+                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; nx: NX (qualnav.md §9) on the "
+                  "range ring, its map learned by exploring first")
+      ->check(CLI::IsMember({"park-kender", "qrm", "nx"}))
       ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
@@ -354,6 +355,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "Trials: run only shard I of K of the --trials journeys (seeded as in the whole run) and print "
                   "them as JSON; `neopipe batch merge-shards` merges the K shards into the unsharded --json")
       ->type_name("I/K");
+  cmd->add_option("--range-error", a.range_error, "nx: the range ring's relative error bound (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--places", a.places, "nx: the exploration stops after this many places")->capture_default_str();
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
@@ -361,6 +365,7 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
 int nav_command(const NavArgs& a) {
   if (!a.shard.empty() && a.system != "park-kender") throw UsageError{"--shard: only --system park-kender's trials"};
   if (a.system == "qrm") return qrm_nav_command(a);
+  if (a.system == "nx") return nx_nav_command(a);
   if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {

@@ -11,7 +11,7 @@
 namespace neopipe::apps {
 
 struct NavArgs {
-  std::string system = "park-kender";  ///< park-kender | qrm
+  std::string system = "park-kender";  ///< park-kender | qrm | nx
   std::string world;
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
@@ -43,11 +43,15 @@ struct NavArgs {
   std::int64_t images = 30;  ///< qrm: imaging positions of the tour that builds the map
   std::int64_t k = 18;       ///< qrm: the k nearest landmarks of an image are fused (spec qrm.md §9)
   std::string pairs;         ///< qrm: journeys between the pairs of a trials JSON instead of random draws
+  double range_error = 0.10;  ///< nx: the range ring's relative error bound
+  std::int64_t places = 40;   ///< nx: the exploration's budget of places
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);
 int nav_command(const NavArgs& args);
 /// `neopipe nav --system qrm` (apps/nav_qrm.cpp).
 int qrm_nav_command(const NavArgs& args);
+/// `neopipe nav --system nx` (apps/nav_nx.cpp).
+int nx_nav_command(const NavArgs& args);
 
 }  // namespace neopipe::apps

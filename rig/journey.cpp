@@ -69,6 +69,11 @@ JourneyResult run_journey(const NavigationSystem& system, const Plan& plan, cons
     panorama.bearing_noise_deg = request.bearing_noise_deg;
     station_settings.panorama = panorama;
   }
+  if (request.sensor == Sensor::range_ring) {
+    sim::RangeRingSettings ring;
+    ring.relative_error = request.range_error;
+    station_settings.range_ring = ring;
+  }
   const Vector2d start = world.objects.at(plan.start) + plan.start_offset;
   Station station(world, station_settings, sim::Pose2{start.x(), start.y(), 0});
 

@@ -32,6 +32,7 @@ class UnreachableGoal : public std::runtime_error {
 enum class Sensor {
   onboard_camera,  ///< looking down at a window beneath the tool (Park & Kender); gray8 frames
   panoramic,       ///< the 360° ring of marble identities and a compass (qualnav.md §2); s16 frames
+  range_ring,      ///< NX's 16 range sensors and a compass (qualnav.md §9); 1 x 16 float frames
 };
 
 /// The camera a system travels with: the onboard camera, or the panoramic sensor, whose ring images
@@ -41,6 +42,7 @@ struct CameraRequest {
   double window_mm = 50;  ///< onboard: side of the view window it shows
   Sensor sensor = Sensor::onboard_camera;
   double bearing_noise_deg = 0;  ///< panoramic: sd of the Gaussian jitter of each disc's bearing
+  double range_error = 0.10;     ///< range ring: bound of each range's uniform relative error (0: off)
 };
 
 /// A journey as its system planned it: what the rig needs to place the arm and to judge. A system
@@ -94,7 +96,8 @@ struct Travel {
 struct Equipment {
   pipeline::io::FrameSource& camera;
   nav::Arm& arm;
-  /// The panoramic sensor's compass; null with the onboard camera. QRM must not read it.
+  /// The panoramic sensor's or the range ring's compass; null with the onboard camera. QRM must not
+  /// read it.
   nav::Compass* compass = nullptr;
 };
 

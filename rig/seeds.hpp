@@ -18,6 +18,7 @@ namespace streams {
 inline constexpr std::uint64_t arm = 0;                ///< a journey's arm errors
 inline constexpr std::uint64_t onboard_camera = 1;     ///< a journey's onboard camera noise
 inline constexpr std::uint64_t panorama = 2;           ///< a journey's panoramic sensor (bearings, compass)
+inline constexpr std::uint64_t range_ring = 3;         ///< a journey's range ring (ranges, compass)
 inline constexpr std::uint64_t gaussian_survey = 100;  ///< the Gaussian survey's errors
 inline constexpr std::uint64_t global_camera = 101;    ///< the global camera's noise (survey, calibration)
 inline constexpr std::uint64_t qrm_positions = 200;    ///< QRM map building: the imaging positions

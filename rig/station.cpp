@@ -1,8 +1,10 @@
 #include "rig/station.hpp"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "rig/seeds.hpp"
 #include "sim/arm/angles.hpp"
@@ -56,16 +58,17 @@ class Station::ArmAdapter final : public nav::Arm {
   ArmLog& log_;
 };
 
-// The compass reads the heading where the arm really is, with the sensor's error.
+// The compass reads the heading where the arm really is, with the sensor's error (the panoramic
+// sensor's or the range ring's: `reading` reads it at a pose).
 class Station::CompassAdapter final : public nav::Compass {
  public:
-  CompassAdapter(sim::PanoramicSensor& sensor, const sim::SimulatedArm& arm) : sensor_(sensor), arm_(arm) {}
-  nav::CompassReading read() override {
-    return {sensor_.compass_deg(arm_.pose()), sensor_.settings().compass_sigma_deg};
-  }
+  CompassAdapter(std::function<double(const sim::Pose2&)> reading, double sigma_deg, const sim::SimulatedArm& arm)
+      : reading_(std::move(reading)), sigma_deg_(sigma_deg), arm_(arm) {}
+  nav::CompassReading read() override { return {reading_(arm_.pose()), sigma_deg_}; }
 
  private:
-  sim::PanoramicSensor& sensor_;
+  std::function<double(const sim::Pose2&)> reading_;
+  double sigma_deg_;
   const sim::SimulatedArm& arm_;
 };
 
@@ -80,8 +83,18 @@ Station::Station(const sim::World& world, const StationSettings& settings, const
     sim::PanoramaSettings panorama = *settings.panorama;
     panorama.seed = stream_seed(settings.seed, streams::panorama);
     panorama_ = std::make_unique<sim::PanoramicSensor>(world_, panorama);
-    compass_ = std::make_unique<CompassAdapter>(*panorama_, arm_);
+    compass_ = std::make_unique<CompassAdapter>([this](const sim::Pose2& p) { return panorama_->compass_deg(p); },
+                                                panorama.compass_sigma_deg, arm_);
     camera_ = sim::panoramic_camera_source(*panorama_, [this] { return arm_.pose(); });
+    return;
+  }
+  if (settings.range_ring) {
+    sim::RangeRingSettings ring = *settings.range_ring;
+    ring.seed = stream_seed(settings.seed, streams::range_ring);
+    range_ring_ = std::make_unique<sim::RangeRingSensor>(world_, ring);
+    compass_ = std::make_unique<CompassAdapter>([this](const sim::Pose2& p) { return range_ring_->compass_deg(p); },
+                                                ring.compass_sigma_deg, arm_);
+    camera_ = sim::range_ring_camera_source(*range_ring_, [this] { return arm_.pose(); });
     return;
   }
   sim::Rendering rendering = sim::rendering_for(settings.realism, sim::CameraKind::onboard, world.size);
@@ -103,6 +116,7 @@ pipeline::io::FrameSource& Station::camera() {
 
 pipeline::io::FrameSource& Station::onboard_camera() {
   if (panorama_) throw std::logic_error("this station carries the panoramic sensor, not the onboard camera");
+  if (range_ring_) throw std::logic_error("this station carries the range ring, not the onboard camera");
   return *camera_;
 }
 

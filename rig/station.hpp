@@ -19,6 +19,7 @@
 #include "sim/cameras.hpp"
 #include "sim/panorama.hpp"
 #include "sim/pose2.hpp"
+#include "sim/range_ring.hpp"
 #include "sim/realism.hpp"
 #include "sim/rendering.hpp"
 #include "sim/world.hpp"
@@ -47,6 +48,9 @@ struct StationSettings {
   /// Set: the tool carries the panoramic sensor instead of the onboard camera (its seed is replaced
   /// by this journey's panorama stream of `seed`).
   std::optional<sim::PanoramaSettings> panorama;
+  /// Set (and no panorama): the tool carries NX's range ring and compass (its seed is replaced by
+  /// this journey's range-ring stream of `seed`).
+  std::optional<sim::RangeRingSettings> range_ring;
 };
 
 /// What the arm did, as the truth has it.
@@ -75,12 +79,12 @@ class Station {
 
   /// What a navigator gets.
   nav::Arm& arm();
-  /// The camera the station carries: the onboard camera, or the panoramic sensor's ring.
+  /// The camera the station carries: the onboard camera, the panoramic sensor's ring or the range ring.
   pipeline::io::FrameSource& camera();
-  /// The same; throws std::logic_error if the station carries the panoramic sensor.
+  /// The same; throws std::logic_error if the station carries the panoramic sensor or the range ring.
   pipeline::io::FrameSource& onboard_camera();
-  /// The panoramic sensor's compass, reading the tool's true heading with its error; null with the
-  /// onboard camera.
+  /// The panoramic sensor's or the range ring's compass, reading the tool's true heading with its
+  /// error; null with the onboard camera.
   nav::Compass* compass();
 
   /// The truth.
@@ -110,6 +114,7 @@ class Station {
   ArmLog log_;
   std::unique_ptr<ArmAdapter> adapter_;
   std::unique_ptr<sim::PanoramicSensor> panorama_;
+  std::unique_ptr<sim::RangeRingSensor> range_ring_;
   std::unique_ptr<CompassAdapter> compass_;
   std::unique_ptr<pipeline::io::FrameSource> camera_;
 };
