@@ -91,11 +91,18 @@ class Journey {
     report_.reason = std::move(reason);
     return report_;
   }
-  // Commands a move; false (and the report ends blocked) when the arm refuses it.
-  bool move(const Vector2d& m) {
+  // Commands a move; false when the arm refuses it. A path move counts towards the turning.
+  bool move(const Vector2d& m, bool path = false) {
     ++report_.steps;
     if (!arm_.move_relative(m.x(), m.y(), 0)) return false;
     report_.commanded_mm += m.norm();
+    if (path && m.norm() > 1e-9) {
+      if (last_path_move_) {
+        const Vector2d& p = *last_path_move_;
+        report_.path_turning += std::abs(std::atan2(p.x() * m.y() - p.y() * m.x(), p.dot(m)));
+      }
+      last_path_move_ = m;
+    }
     return true;
   }
   // A clearance-keeping move towards `bearing`; nullopt: none is safe.
@@ -115,6 +122,7 @@ class Journey {
   GoalObserver* observer_;
   MemoryHeadings headings_;
   NavigationReport report_;
+  std::optional<Vector2d> last_path_move_;
 };
 
 NavigationReport Journey::run() {
@@ -165,7 +173,7 @@ NavigationReport Journey::run() {
     }
     const std::optional<Vector2d> m = safe(now, h.bearing, std::min(config_.step_mm, h.distance), std::nullopt);
     if (!m) return end(NavigationEnding::blocked, "no step towards the next viewframe keeps the clearance");
-    if (!move(*m)) return end(NavigationEnding::blocked, "the arm refused a step");
+    if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a step");
     ++report_.heading_steps;
   }
   return end(NavigationEnding::step_limit, "the step limit ran out before the goal");
@@ -191,7 +199,7 @@ std::optional<NavigationReport> Journey::climb(std::size_t gn) {
     if (step.isZero()) return std::nullopt;
     const std::optional<Vector2d> m = safe(now, std::atan2(step.y(), step.x()), step.norm(), std::nullopt);
     if (!m) return std::nullopt;
-    if (!move(*m)) return end(NavigationEnding::blocked, "the arm refused a hill-climb step");
+    if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a hill-climb step");
     ++report_.climb_steps;
   }
   return end(NavigationEnding::step_limit, "the step limit ran out while hill-climbing");
@@ -215,7 +223,7 @@ NavigationReport Journey::approach() {
     const double length = std::min(config_.step_mm, g->range_lo - (config_.stop_mm + 1));
     const std::optional<Vector2d> m = safe(now, g->bearing, length, goal_);
     if (!m) return end(NavigationEnding::blocked, "no step towards the goal keeps the clearance");
-    if (!move(*m)) return end(NavigationEnding::blocked, "the arm refused a step towards the goal");
+    if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a step towards the goal");
     ++report_.approach_steps;
     now = eye_.look();
   }

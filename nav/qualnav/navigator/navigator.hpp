@@ -81,6 +81,9 @@ struct NavigationReport {
   int shortcuts = 0;        ///< plans whose next node skips remembered viewframes of the previous plan
   std::vector<std::size_t> first_plan;  ///< memory nodes of the first plan
   double commanded_mm = 0;  ///< the moves' total length
+  /// The sum of the absolute turns between consecutive path moves (heading, hill-climb and a-heading
+  /// steps; the parallax moves and the stop are left out), rad: how smooth the executed path is.
+  double path_turning = 0;
   double goal_range_mm = 0; ///< the parallax range at the stop
   Eigen::Vector2d claimed_offset = Eigen::Vector2d::Zero();
 };
