@@ -264,8 +264,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
   cmd->add_option("--system", a.system,
                   "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
-                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first")
-      ->check(CLI::IsMember({"park-kender", "qrm"}))
+                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
+                  "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor")
+      ->check(CLI::IsMember({"park-kender", "qrm", "qualnav"}))
       ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
@@ -330,12 +331,22 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "qrm: journeys between the pairs of a trials JSON (its journeys' from/to, e.g. Park & Kender's "
                   "--trials --json) instead of --trials random draws, so the two systems meet the same pairs")
       ->type_name("FILE");
+  cmd->add_option("--range-error", a.range_error,
+                  "qualnav: the range error e the sensor's range estimates carry (a factor log-uniform in [1/(1+e), "
+                  "1+e] per sighting) and the navigator's intervals allow; 0.5 is the papers' 50 %")
+      ->capture_default_str();
+  cmd->add_option("--taught-route", a.taught_route,
+                  "qualnav: the routes the harness teaches (its memory): shortest (clear of the marbles) or detour "
+                  "(via a point off to the side, leaving shortcuts to find)")
+      ->check(CLI::IsMember({"shortest", "detour"}))
+      ->capture_default_str();
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
 
 int nav_command(const NavArgs& a) {
   if (a.system == "qrm") return qrm_nav_command(a);
+  if (a.system == "qualnav") return qualnav_nav_command(a);
   if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {

@@ -11,7 +11,7 @@
 namespace neopipe::apps {
 
 struct NavArgs {
-  std::string system = "park-kender";  ///< park-kender | qrm
+  std::string system = "park-kender";  ///< park-kender | qrm | qualnav
   std::string world;
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
@@ -42,11 +42,15 @@ struct NavArgs {
   std::int64_t images = 30;  ///< qrm: imaging positions of the tour that builds the map
   std::int64_t k = 18;       ///< qrm: the k nearest landmarks of an image are fused (spec qrm.md §9)
   std::string pairs;         ///< qrm: journeys between the pairs of a trials JSON instead of random draws
+  double range_error = 0.5;
+  std::string taught_route = "shortest";  ///< qualnav: shortest | detour  ///< qualnav: the range estimates' error e, factors in [1/(1+e), 1+e]
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);
 int nav_command(const NavArgs& args);
 /// `neopipe nav --system qrm` (apps/nav_qrm.cpp).
 int qrm_nav_command(const NavArgs& args);
+/// `neopipe nav --system qualnav` (apps/nav_qualnav.cpp).
+int qualnav_nav_command(const NavArgs& args);
 
 }  // namespace neopipe::apps

@@ -120,7 +120,9 @@ std::unique_ptr<Plan> QualnavSystem::plan(std::uint32_t from, std::uint32_t to) 
   }
   if (!placed) throw UnreachableGoal(fmt::format("no start clear of the marbles in object {}'s cell", from));
   const Vector2d start = world_.objects[from] + p->start_offset;
-  auto route = teach_route(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm);
+  auto route = settings_.detour ? teach_detour(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm,
+                                               (from + to) % 2 == 0 ? 1.0 : -1.0)
+                                 : teach_route(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm);
   if (!route) {
     throw UnreachableGoal(fmt::format("no route from object {} to {} keeps {} mm from the marbles", from, to,
                                       settings_.route_clearance_mm));
@@ -151,7 +153,8 @@ Travel QualnavSystem::travel(const Plan& plan, Equipment& equipment, Witness& wi
       stream_seed(stream_seed(p.seed, kJourneyRangeStream), std::bit_cast<std::uint64_t>(first_compass)));
   const double e = settings_.sensing.range_error;
   qn::RingViewSource eye(equipment.camera, *equipment.compass,
-                         nav::PanoramaModel{world_.marble_diameter / 2, settings_.sensing.bearing_noise_deg}, 1 + e,
+                         nav::PanoramaModel{world_.marble_diameter / 2, settings_.sensing.bearing_noise_deg},
+                         qualnav_interval_factor(e),
                          [&](std::vector<nav::PanoramaSighting>& s) {
                            apply_range_error(s, e, [&] { return range_noise.uniform(); });
                          });
@@ -182,13 +185,17 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
   std::int64_t arrived_shorter = 0;
   std::int64_t arrived_smoother = 0;
   std::int64_t arrived = 0;
+  double executed = 0;  // path moves of the journeys that arrived
+  double taught_arrived = 0;
   json journeys = json::array();
   for (std::size_t i = 0; i < t.trials.size(); ++i) {
     const TrialRecord& r = t.trials[i];
     const QualnavPlan& p = qualnav_plan(*plans[i]);
     const auto* report = std::any_cast<qn::NavigationReport>(&r.details);
     const double route_mm = route_length(p.route);
-    const double route_turn = route_turning(p.route);
+    // Turning of both at the memory's 20 mm spacing, so the executed path's 10 mm steps and the
+    // route's grid corners count alike.
+    const double route_turn = route_turning(sample_route(p.route, qn::kViewpathSpacingMm));
     taught += route_mm;
     taught_turning += route_turn;
     json j = {{"from", r.from},
@@ -205,13 +212,16 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
       steps += report->steps;
       shortcuts += report->shortcuts;
       detours += report->detours;
-      executed_turning += report->path_turning;
+      const double path_turn = route_turning(sample_route(report->path, qn::kViewpathSpacingMm));
+      executed_turning += path_turn;
       if (report->ending == qn::NavigationEnding::arrived) {
         ++arrived;
+        taught_arrived += route_mm;
         // The executed path against the taught route, both to where the taught route ends (the
         // executed one also makes the parallax moves and the last 5 mm to the stop).
-        arrived_shorter += static_cast<std::int64_t>(r.commanded_travel < route_mm);
-        arrived_smoother += static_cast<std::int64_t>(report->path_turning < route_turn);
+        arrived_shorter += static_cast<std::int64_t>(report->path_mm < route_mm);
+        executed += report->path_mm;
+        arrived_smoother += static_cast<std::int64_t>(path_turn < route_turn);
       }
       j["ending"] = qn::navigation_ending_name(report->ending);
       j["steps"] = report->steps;
@@ -221,7 +231,8 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
       j["replans"] = report->replans;
       j["detours"] = report->detours;
       j["commanded_travel"] = report->commanded_mm;
-      j["path_turning_deg"] = report->path_turning * 180 / std::numbers::pi;
+      j["path_turning_deg"] = path_turn * 180 / std::numbers::pi;
+      j["path_mm"] = report->path_mm;
     }
     journeys.push_back(std::move(j));
   }
@@ -247,10 +258,13 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
                    {"range_error", s.sensing.range_error},
                    {"step_mm", s.navigator.step_mm},
                    {"route_clearance_mm", s.route_clearance_mm},
+                   {"taught_routes", s.detour ? "detour" : "shortest"},
                    {"mean_taught_route_mm", taught / runs},
                    {"mean_taught_turning_deg", taught_turning / runs * 180 / std::numbers::pi},
                    {"mean_path_turning_deg", executed_turning / runs * 180 / std::numbers::pi},
                    {"arrived", arrived},
+                   {"arrived_taught_route_mm", taught_arrived},
+                   {"arrived_path_mm", executed},
                    {"arrived_shorter_than_taught", arrived_shorter},
                    {"arrived_smoother_than_taught", arrived_smoother}}},
                  {"journeys", journeys}};

@@ -39,8 +39,13 @@ bool segment_clear(const sim::World& world, const Vector2d& a, const Vector2d& b
 
 std::optional<std::vector<Vector2d>> teach_route(const sim::World& world, const Vector2d& from, std::uint32_t goal,
                                                  double clearance_mm, double end_mm) {
+  return teach_route_to(world, from, world.objects.at(goal), clearance_mm, end_mm, kCellMm);
+}
+
+std::optional<std::vector<Vector2d>> teach_route_to(const sim::World& world, const Vector2d& from,
+                                                    const Vector2d& target, double clearance_mm, double end_mm,
+                                                    double tolerance_mm) {
   const double required = world.marble_diameter / 2 + clearance_mm;
-  const Vector2d target = world.objects.at(goal);
   const int w = static_cast<int>(std::ceil(world.size.x() / kCellMm)) + 1;
   const int h = static_cast<int>(std::ceil(world.size.y() / kCellMm)) + 1;
   const auto at = [&](int i, int j) { return Vector2d(i * kCellMm, j * kCellMm); };
@@ -51,8 +56,10 @@ std::optional<std::vector<Vector2d>> teach_route(const sim::World& world, const 
   const int si = std::clamp(static_cast<int>(std::lround(from.x() / kCellMm)), 0, w - 1);
   const int sj = std::clamp(static_cast<int>(std::lround(from.y() / kCellMm)), 0, h - 1);
   const auto index = [&](int i, int j) { return static_cast<std::size_t>(j) * w + i; };
-  const auto done = [&](int i, int j) { return std::abs((at(i, j) - target).norm() - end_mm) <= kCellMm; };
-  const auto heuristic = [&](int i, int j) { return std::max(0.0, (at(i, j) - target).norm() - end_mm - kCellMm); };
+  const auto done = [&](int i, int j) { return std::abs((at(i, j) - target).norm() - end_mm) <= tolerance_mm; };
+  const auto heuristic = [&](int i, int j) {
+    return std::max(0.0, (at(i, j) - target).norm() - end_mm - tolerance_mm);
+  };
   std::vector<double> cost(blocked.size(), std::numeric_limits<double>::infinity());
   std::vector<std::size_t> parent(blocked.size(), blocked.size());
   using Entry = std::tuple<double, std::size_t>;
@@ -101,6 +108,20 @@ std::optional<std::vector<Vector2d>> teach_route(const sim::World& world, const 
     i = j;
   }
   return route;
+}
+
+std::optional<std::vector<Vector2d>> teach_detour(const sim::World& world, const Vector2d& from, std::uint32_t goal,
+                                                  double clearance_mm, double end_mm, double side) {
+  const Vector2d g = world.objects.at(goal);
+  const Vector2d d = g - from;
+  const Vector2d normal(-d.y(), d.x());
+  const Vector2d corner = (from + 0.5 * d + 0.4 * side * normal).cwiseMax(Vector2d::Zero()).cwiseMin(world.size);
+  auto first = teach_route_to(world, from, corner, clearance_mm, 0, 12);
+  if (!first) return std::nullopt;
+  auto second = teach_route(world, first->back(), goal, clearance_mm, end_mm);
+  if (!second) return std::nullopt;
+  first->insert(first->end(), second->begin() + 1, second->end());
+  return first;
 }
 
 std::vector<Vector2d> sample_route(const std::vector<Vector2d>& route, double spacing_mm) {
@@ -158,9 +179,11 @@ std::vector<nav::qualnav::Viewframe> record_viewpath(const sim::World& world, co
     std::vector<nav::PanoramaSighting> sightings = reader.read(ring.image);
     apply_range_error(sightings, sensing.range_error, [&] { return range_noise.uniform(); });
     const double compass = std::fmod(compass_noise.normal(0, panorama.compass_sigma_deg) + 360, 360);
-    out.push_back(nav::qualnav::viewframe_from_sightings(sightings, compass, 1 + sensing.range_error));
+    out.push_back(nav::qualnav::viewframe_from_sightings(sightings, compass, qualnav_interval_factor(sensing.range_error)));
   }
   return out;
 }
+
+double qualnav_interval_factor(double range_error) { return 1 + range_error + kRangeEstimateSlack; }
 
 }  // namespace neopipe::rig

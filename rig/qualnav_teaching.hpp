@@ -26,12 +26,29 @@ struct QualnavSensing {
   double bearing_noise_deg = 0;  ///< the sensor's configured bearing noise
 };
 
+/// The disc-size estimate itself errs by a few percent (pixel areas); the intervals allow for it.
+inline constexpr double kRangeEstimateSlack = 0.05;
+/// The navigator's intervals for a range error e: [d̂ / f, f · d̂] with f = 1 + e + kRangeEstimateSlack.
+double qualnav_interval_factor(double range_error);
+
 /// The harness's route from `from` to within `end_mm` (±2 mm) of `goal`'s centre keeping
 /// `clearance_mm` from every marble's surface (the grid's cells are 2 mm; `from` itself may be
 /// nearer a marble than that, by up to the margin the start placement leaves). nullopt when there
 /// is none. The polyline starts at `from`.
 std::optional<std::vector<Eigen::Vector2d>> teach_route(const sim::World& world, const Eigen::Vector2d& from,
                                                         std::uint32_t goal, double clearance_mm, double end_mm);
+
+/// The same to within `end_mm` ± `tolerance_mm` of a point.
+std::optional<std::vector<Eigen::Vector2d>> teach_route_to(const sim::World& world, const Eigen::Vector2d& from,
+                                                           const Eigen::Vector2d& target, double clearance_mm,
+                                                           double end_mm, double tolerance_mm);
+
+/// A roundabout route, as a user clicking a path through the workspace might teach: first to near
+/// the point 0.4 · |goal − from| to the `side` (+1 left, −1 right) of the midpoint, then to the goal.
+/// It leaves the navigator shortcuts to find (qualnav.md §10's experiment).
+std::optional<std::vector<Eigen::Vector2d>> teach_detour(const sim::World& world, const Eigen::Vector2d& from,
+                                                         std::uint32_t goal, double clearance_mm, double end_mm,
+                                                         double side);
 
 /// Points every `spacing_mm` along a polyline, its first point first and its last point last.
 std::vector<Eigen::Vector2d> sample_route(const std::vector<Eigen::Vector2d>& route, double spacing_mm);

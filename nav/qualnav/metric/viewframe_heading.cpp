@@ -38,33 +38,39 @@ std::optional<double> FrameScales::scale(LandmarkPair pair) const {
 
 FramePositions PairFrame::positions() const { return {{first, Vector2d::Zero()}, {second, Vector2d(s, 0)}}; }
 
-std::optional<PairFrame> choose_frame(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
-                                      double max_separation) {
+std::vector<PairFrame> candidate_frames(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
+                                        double max_separation) {
   const std::vector<LandmarkId> shared = shared_landmarks(a, b);
-  std::optional<PairFrame> best;
-  double widest = -1;
+  std::vector<std::pair<double, PairFrame>> found;
   for (std::size_t x = 0; x < shared.size(); ++x) {
     for (std::size_t y = x + 1; y < shared.size(); ++y) {
       const ViewedLandmark& ai = *a.find(shared[x]);
       const ViewedLandmark& aj = *a.find(shared[y]);
       const double sep_a = std::abs(angle_between(ai, aj));
       const double sep_b = std::abs(angle_between(*b.find(shared[x]), *b.find(shared[y])));
-      const double sep = std::min(sep_a, sep_b);
-      if (std::max(sep_a, sep_b) >= max_separation || sep <= widest) continue;
-      std::optional<double> s = scales.scale(make_pair_key(shared[x], shared[y]));
-      if (!s) {
-        // Neither viewframe was added: the two viewframes' own average.
-        s = (*pair_separation(a, make_pair_key(shared[x], shared[y])) +
-             *pair_separation(b, make_pair_key(shared[x], shared[y]))) /
-            2;
-      }
-      if (!(*s > 0)) continue;
-      widest = sep;
+      if (std::max(sep_a, sep_b) >= max_separation) continue;
+      const LandmarkPair key = make_pair_key(shared[x], shared[y]);
+      // Neither viewframe in the scales: the two viewframes' own average.
+      const double s = scales.scale(key).value_or((*pair_separation(a, key) + *pair_separation(b, key)) / 2);
+      if (!(s > 0)) continue;
       const bool ccw = angle_between(ai, aj) > 0;  // aj counter-clockwise of ai
-      best = PairFrame{ccw ? shared[x] : shared[y], ccw ? shared[y] : shared[x], *s};
+      found.emplace_back(std::min(sep_a, sep_b),
+                         PairFrame{ccw ? shared[x] : shared[y], ccw ? shared[y] : shared[x], s});
     }
   }
-  return best;
+  // Widest first; ties by ids (the pairs were found in id order).
+  std::stable_sort(found.begin(), found.end(), [](const auto& l, const auto& r) { return l.first > r.first; });
+  std::vector<PairFrame> out;
+  out.reserve(found.size());
+  for (const auto& f : found) out.push_back(f.second);
+  return out;
+}
+
+std::optional<PairFrame> choose_frame(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
+                                      double max_separation) {
+  std::vector<PairFrame> all = candidate_frames(a, b, scales, max_separation);
+  if (all.empty()) return std::nullopt;
+  return all.front();
 }
 
 Localization localize_in_frame(const Viewframe& view, const PairFrame& frame, const LocalizationOptions& options) {

@@ -49,6 +49,9 @@ struct PairFrame {
 /// two separations decides; ties: lower ids). L1 is the landmark from which the other lies
 /// counter-clockwise in `a` (within π). nullopt when they share fewer than two landmarks or no pair
 /// is separated by less than `max_separation` in both.
+/// Every pair choose_frame considers, widest first (choose_frame returns the first).
+std::vector<PairFrame> candidate_frames(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
+                                        double max_separation = 179.0 * 3.14159265358979323846 / 180);
 std::optional<PairFrame> choose_frame(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
                                       double max_separation = 179.0 * 3.14159265358979323846 / 180);
 

@@ -47,9 +47,9 @@ std::optional<Vector2d> safe_move(const Viewframe& view, double bearing, double 
                                   std::optional<LandmarkId> ignore) {
   constexpr double kTurn = 15 * std::numbers::pi / 180;
   for (const double scale : {1.0, 0.5}) {
-    for (int k = 0; k <= 6; ++k) {
+    for (int k = 0; k <= 12; ++k) {
       for (const int sign : {1, -1}) {
-        if (k == 0 && sign < 0) continue;
+        if ((k == 0 || k == 12) && sign < 0) continue;
         const Vector2d end = scale * length * unit(bearing + sign * k * kTurn);
         const bool safe = std::all_of(view.landmarks.begin(), view.landmarks.end(), [&](const ViewedLandmark& l) {
           if (ignore && l.id == *ignore) return true;

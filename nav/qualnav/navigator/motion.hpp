@@ -31,7 +31,8 @@ double track_gap(const ViewedLandmark& l, const Eigen::Vector2d& end);
 double current_gap(const ViewedLandmark& l);
 
 /// The move (tool frame, mm) nearest `bearing` that keeps the clearance of every landmark of `view`
-/// except `ignore`: `length` along bearing, then turned ±15°, ±30°, ... ±90°, then at half length.
+/// except `ignore`: `length` along bearing, then turned ±15°, ±30°, ... 180° (backing away is
+/// a move too), then the same at half length.
 /// nullopt when none is safe.
 std::optional<Eigen::Vector2d> safe_move(const Viewframe& view, double bearing, double length,
                                          const ClearanceRule& rule, std::optional<LandmarkId> ignore = std::nullopt);

@@ -32,22 +32,30 @@ class MemoryHeadings {
  public:
   explicit MemoryHeadings(const VisualMemory& memory) : memory_(memory) {}
 
-  // The heading from `now` (localized per frame in `now_cache`) to node `n`.
+  // The heading from `now` (localized per frame in `now_cache`) to node `n`, averaged over up to
+  // `frames` frames as moves in the sensor frame.
   std::optional<StepHeading> from_view(const Viewframe& now, std::map<FrameKey, Localization>& now_cache,
-                                       std::size_t n) {
+                                       std::size_t n, int frames) {
     const Viewframe& there = memory_.nodes()[n].view;
-    const std::optional<PairFrame> frame = choose_frame(now, there, memory_.scales());
-    if (!frame) return std::nullopt;
-    const FrameKey key{frame->first, frame->second};
-    auto here = now_cache.find(key);
-    if (here == now_cache.end()) {
-      here = now_cache.emplace(key, localize_in_frame(now, *frame, memory_.localization())).first;
+    Vector2d sum = Vector2d::Zero();
+    int used = 0;
+    for (const PairFrame& frame : candidate_frames(now, there, memory_.scales())) {
+      if (used >= frames) break;
+      const FrameKey key{frame.first, frame.second};
+      auto here = now_cache.find(key);
+      if (here == now_cache.end()) {
+        here = now_cache.emplace(key, localize_in_frame(now, frame, memory_.localization())).first;
+      }
+      const Localization& a = here->second;
+      const Localization& b = node_localization(n, frame);
+      if (a.empty() || b.empty()) continue;
+      const Vector2d h = b.centroid - a.centroid;
+      sum += h.norm() * unit_of(sensor_bearing_of(now, frame, a.centroid, h));
+      ++used;
     }
-    const Localization& a = here->second;
-    const Localization& b = node_localization(n, *frame);
-    if (a.empty() || b.empty()) return std::nullopt;
-    const Vector2d h = b.centroid - a.centroid;
-    return StepHeading{h.norm(), sensor_bearing_of(now, *frame, a.centroid, h)};
+    if (used == 0) return std::nullopt;
+    const Vector2d mean = sum / used;
+    return StepHeading{mean.norm(), std::atan2(mean.y(), mean.x())};
   }
 
   // The spec's heuristic: heading length from node n to the goal node when they share a pair.
@@ -96,6 +104,13 @@ class Journey {
     ++report_.steps;
     if (!arm_.move_relative(m.x(), m.y(), 0)) return false;
     report_.commanded_mm += m.norm();
+    position_ += m;
+    odometer_ += m.norm();
+    if (path) {
+      report_.path_mm += m.norm();
+      if (report_.path.empty()) report_.path.push_back(position_ - m);
+      report_.path.push_back(position_);
+    }
     if (path && m.norm() > 1e-9) {
       if (last_path_move_) {
         const Vector2d& p = *last_path_move_;
@@ -106,8 +121,31 @@ class Journey {
     return true;
   }
   // A clearance-keeping move towards `bearing`; nullopt: none is safe.
-  std::optional<Vector2d> safe(const Viewframe& now, double bearing, double length, std::optional<LandmarkId> ignore) {
-    const std::optional<Vector2d> m = safe_move(now, bearing, length, config_.clearance, ignore);
+  // A look, and its guard: the same landmarks with range bounds fused over the looks so far.
+  Viewframe look() {
+    Viewframe v = eye_.look();
+    guard_ = v;
+    for (ViewedLandmark& l : guard_.landmarks) {
+      auto [it, fresh] = bounds_.try_emplace(l.id, RangeBound{l.range_lo, l.range_hi, odometer_});
+      if (!fresh) {
+        // Since the last look the tool moved at most `moved` (odometry plus 5 % for the arm's errors),
+        // so the range then bounds the range now within that.
+        const double moved = 1.05 * (odometer_ - it->second.odometer) + 0.1;
+        const double lo = std::max(l.range_lo, it->second.lo - moved);
+        const double hi = std::min(l.range_hi, it->second.hi + moved);
+        if (lo <= hi) {
+          l.range_lo = lo;
+          l.range_hi = hi;
+        }
+      }
+      it->second = RangeBound{l.range_lo, l.range_hi, odometer_};
+    }
+    return v;
+  }
+  // A clearance-keeping move towards `bearing` by the latest look's guard; nullopt: none is safe.
+  std::optional<Vector2d> safe(const Viewframe& /*now*/, double bearing, double length,
+                               std::optional<LandmarkId> ignore) {
+    const std::optional<Vector2d> m = safe_move(guard_, bearing, length, config_.clearance, ignore);
     if (m && std::abs(wrap_angle(std::atan2(m->y(), m->x()) - bearing)) > 1e-6) ++report_.detours;
     return m;
   }
@@ -123,6 +161,15 @@ class Journey {
   MemoryHeadings headings_;
   NavigationReport report_;
   std::optional<Vector2d> last_path_move_;
+  Vector2d position_ = Vector2d::Zero();  // dead reckoning of the commanded moves
+  double odometer_ = 0;                   // mm commanded so far
+  struct RangeBound {
+    double lo = 0;
+    double hi = 0;
+    double odometer = 0;  // when they held
+  };
+  std::map<LandmarkId, RangeBound> bounds_;
+  Viewframe guard_;
 };
 
 NavigationReport Journey::run() {
@@ -132,7 +179,7 @@ NavigationReport Journey::run() {
   const std::size_t n_nodes = memory_.nodes().size();
   std::vector<std::size_t> previous;
   while (!out_of_steps()) {
-    const Viewframe now = eye_.look();
+    const Viewframe now = look();
     if (const ViewedLandmark* g = now.find(goal_); g != nullptr && g->range_hi <= config_.approach_mm) {
       return approach();
     }
@@ -144,7 +191,7 @@ NavigationReport Journey::run() {
     std::optional<std::size_t> nearest;
     for (std::size_t n = 0; n < n_nodes; ++n) {
       if (shared_landmarks(now, memory_.nodes()[n].view).size() < 2) continue;
-      to[n] = headings_.from_view(now, now_cache, n);
+      to[n] = headings_.from_view(now, now_cache, n, config_.frames);
       if (!to[n]) continue;
       if (!nearest || to[n]->distance < to[*nearest]->distance) nearest = n;
       // A node the robot already stands on is no step: links to it would stall the plan there.
@@ -171,7 +218,14 @@ NavigationReport Journey::run() {
       }
       return approach();
     }
-    const std::optional<Vector2d> m = safe(now, h.bearing, std::min(config_.step_mm, h.distance), std::nullopt);
+    double bearing = h.bearing;
+    if (config_.steer_by_angles) {
+      if (const std::optional<ClimbState> c = climb_state(now, memory_.nodes()[target].view); c && c->pairs >= 2) {
+        const Vector2d down = climb_step(*c, config_.climb);
+        if (!down.isZero()) bearing = std::atan2(down.y(), down.x());
+      }
+    }
+    const std::optional<Vector2d> m = safe(now, bearing, std::min(config_.step_mm, h.distance), std::nullopt);
     if (!m) return end(NavigationEnding::blocked, "no step towards the next viewframe keeps the clearance");
     if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a step");
     ++report_.heading_steps;
@@ -186,7 +240,7 @@ std::optional<NavigationReport> Journey::climb(std::size_t gn) {
   double best = std::numeric_limits<double>::infinity();
   int stalled = 0;
   while (!out_of_steps()) {
-    const Viewframe now = eye_.look();
+    const Viewframe now = look();
     const std::optional<ClimbState> s = climb_state(now, goal_view);
     if (!s || s->worst_error < config_.climb.done_error) return std::nullopt;
     if (s->cost < best) {
@@ -208,32 +262,48 @@ std::optional<NavigationReport> Journey::climb(std::size_t gn) {
 NavigationReport Journey::approach() {
   const double near = config_.stop_mm + 5;
   const auto look_goal = [&]() -> std::optional<ViewedLandmark> {
-    const Viewframe v = eye_.look();
+    const Viewframe v = look();
     const ViewedLandmark* g = v.find(goal_);
     if (g == nullptr) return std::nullopt;
     return *g;
   };
   // Towards the goal without overshooting: its true range is at least range_lo.
-  Viewframe now = eye_.look();
+  Viewframe now = look();
+  std::optional<double> last_goal_bearing;
+  int hidden = 0;
   while (true) {
     if (out_of_steps()) return end(NavigationEnding::step_limit, "the step limit ran out on the goal's a heading");
     const ViewedLandmark* g = now.find(goal_);
-    if (g == nullptr) return end(NavigationEnding::goal_lost, "the goal left the view on its a heading");
+    if (g == nullptr) {
+      // Hidden behind a nearer marble: step aside of where it was last seen, a few times.
+      if (!last_goal_bearing || ++hidden > 4) return end(NavigationEnding::goal_lost, "the goal left the view on its a heading");
+      const double side = hidden % 2 == 1 ? 1.0 : -1.0;
+      const std::optional<Vector2d> m =
+          safe(now, *last_goal_bearing + side * std::numbers::pi / 2, config_.parallax_mm * hidden, goal_);
+      if (!m || !move(*m)) return end(NavigationEnding::goal_lost, "the goal left the view on its a heading");
+      ++report_.approach_steps;
+      now = look();
+      continue;
+    }
+    last_goal_bearing = g->bearing;
     if (g->range_lo <= near) break;
     const double length = std::min(config_.step_mm, g->range_lo - (config_.stop_mm + 1));
     const std::optional<Vector2d> m = safe(now, g->bearing, length, goal_);
     if (!m) return end(NavigationEnding::blocked, "no step towards the goal keeps the clearance");
     if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a step towards the goal");
     ++report_.approach_steps;
-    now = eye_.look();
+    now = look();
   }
   // The range by parallax: a sideways move, a second bearing.
   const auto parallax = [&](const Viewframe& v) -> std::optional<std::pair<double, double>> {
     const ViewedLandmark* g = v.find(goal_);
     if (g == nullptr) return std::nullopt;
-    for (const double side : {1.0, -1.0}) {
-      const Vector2d m = config_.parallax_mm * unit_of(g->bearing + side * std::numbers::pi / 2);
-      const bool clear = std::all_of(v.landmarks.begin(), v.landmarks.end(), [&](const ViewedLandmark& l) {
+    // Sideways first; any move across the bearing gives a parallax, so then obliquely and shorter.
+    constexpr std::array<double, 6> kTurns{90, -90, 120, -120, 60, -60};
+    for (int k = 0; k < 12; ++k) {
+      const double length = k < 6 ? config_.parallax_mm : config_.parallax_mm / 2;
+      const Vector2d m = length * unit_of(g->bearing + kTurns[k % 6] * std::numbers::pi / 180);
+      const bool clear = std::all_of(guard_.landmarks.begin(), guard_.landmarks.end(), [&](const ViewedLandmark& l) {
         const double gap = track_gap(l, m);
         return l.id == goal_ || gap >= config_.clearance.required() || gap >= current_gap(l);
       });
@@ -253,7 +323,7 @@ NavigationReport Journey::approach() {
   const Vector2d to_stop = (fix->first - config_.stop_mm) * unit_of(fix->second);
   if (!move(to_stop)) return end(NavigationEnding::blocked, "the arm refused the move to the stop");
   ++report_.approach_steps;
-  fix = parallax(eye_.look());
+  fix = parallax(look());
   if (!fix) return end(NavigationEnding::blocked, "no parallax move keeps the clearance at the stop");
   const Vector2d back = (fix->first - config_.stop_mm) * unit_of(fix->second);
   if (!move(back)) return end(NavigationEnding::blocked, "the arm refused the move to the stop");

@@ -42,6 +42,14 @@ struct NavigatorConfig {
   double link_mm = kLinkDistanceMm;
   ClearanceRule clearance;
   bool hill_climb = false;  ///< descend the goal viewframe's relative angles before the a heading
+  /// Steer each step down the relative-angle error to the plan's next viewframe (the hill-climb's
+  /// direction, range-free but for its scale) instead of along the viewframe heading, whose length
+  /// still sets the step and the plan. The heading alone rests on the range intervals: at 50 %
+  /// error its direction wanders from look to look.
+  bool steer_by_angles = false;
+  /// Viewframe headings averaged over this many frames (the widest pairs first): one frame rests on
+  /// two landmarks' range intervals, several on more.
+  int frames = 5;
   HillClimbSettings climb;
 };
 
@@ -84,8 +92,11 @@ struct NavigationReport {
   /// The sum of the absolute turns between consecutive path moves (heading, hill-climb and a-heading
   /// steps; the parallax moves and the stop are left out), rad: how smooth the executed path is.
   double path_turning = 0;
+  double path_mm = 0;  ///< the path moves' total length (to where the stop's parallax begins)
   double goal_range_mm = 0; ///< the parallax range at the stop
   Eigen::Vector2d claimed_offset = Eigen::Vector2d::Zero();
+  /// Where the path moves took the tool by dead reckoning, in the start's tool frame, start first.
+  std::vector<Eigen::Vector2d> path;
 };
 
 /// The memory node nearest the goal landmark: the viewframe that sees it at the smallest range
