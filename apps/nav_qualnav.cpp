@@ -228,6 +228,8 @@ int qualnav_nav_command(const NavArgs& a) {
   if (const char* v = std::getenv("QN_STEER")) settings.navigator.steer_by_angles = std::atoi(v) != 0;
   if (const char* v = std::getenv("QN_STEP")) settings.navigator.step_mm = std::atof(v);
   if (const char* v = std::getenv("QN_LINK")) settings.navigator.link_mm = std::atof(v);
+  if (const char* v = std::getenv("QN_SMOOTH")) settings.navigator.smoothing = std::atof(v);
+  if (const char* v = std::getenv("QN_FUSED")) settings.navigator.fused_ranges = std::atoi(v) != 0;
   settings.detour = a.taught_route == "detour";
   const rig::QualnavSystem system(world, settings);
   return a.from ? qualnav_one_journey(a, world, system) : qualnav_trials(a, world, system);

@@ -6,10 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "rig/journey.hpp"
 #include "rig/qualnav_system.hpp"
@@ -47,7 +50,10 @@ TEST(QualnavTeaching, RoutesKeepTheirClearanceAndEndNearTheGoal) {
   }
   const std::vector<Vector2d> every20 = rig::sample_route(*route, 20);
   EXPECT_NEAR(static_cast<double>(every20.size()), std::ceil(rig::route_length(*route) / 20) + 1, 1);
-  for (std::size_t k = 1; k + 1 < every20.size(); ++k) EXPECT_NEAR((every20[k] - every20[k - 1]).norm(), 20, 1e-6 + 20);
+  for (std::size_t k = 1; k < every20.size(); ++k) {
+    EXPECT_LE((every20[k] - every20[k - 1]).norm(), 20 + 1e-9);  // 20 mm along the route, no more apart
+    EXPECT_GT((every20[k] - every20[k - 1]).norm(), 0);
+  }
 }
 
 TEST(QualnavSystem, JourneysReachTheirGoalsKeepingClearOfTheMarbles) {
@@ -72,12 +78,53 @@ TEST(QualnavSystem, JourneysReachTheirGoalsKeepingClearOfTheMarbles) {
       // Stopped 15 mm from the goal's centre.
       EXPECT_NEAR((r.arm.track.back() - w.objects[plan->goal]).norm(), 15, 1.5);
     }
-    std::cout << plan->start << "->" << plan->goal << " " << rig::outcome_name(r.outcome) << " "
-              << qn::navigation_ending_name(report->ending) << " " << report->reason << " steps " << report->steps
-              << " shortcuts " << report->shortcuts << " travel " << r.arm.true_travel << " taught "
-              << rig::route_length(rig::qualnav_plan(*plan).route) << "\n";
   }
   EXPECT_EQ(reached, std::ssize(plans));
+}
+
+TEST(QualnavSystem, TrialsAreTheSameOnOneThreadAndTwo) {
+  const sim::World w = small_world();
+  rig::QualnavSettings s;
+  s.sensing.range_error = 1;
+  s.detour = true;
+  const rig::QualnavSystem system(w, s);
+  const auto plans = rig::draw_plans(system, w.objects.size(), 6, 5);
+  rig::JourneySettings js;
+  js.seed = 9;
+  nlohmann::json one = rig::qualnav_trials_json(system, plans, rig::run_trials(system, plans, w, js, 1));
+  nlohmann::json two = rig::qualnav_trials_json(system, plans, rig::run_trials(system, plans, w, js, 2));
+  one.erase("seconds");
+  two.erase("seconds");
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one["qualnav"]["taught_routes"], "detour");
+}
+
+TEST(QualnavSystem, BadInput) {
+  sim::World one;
+  one.size = {100, 100};
+  one.objects = {{50, 50}};
+  EXPECT_THROW(rig::QualnavSystem(one, rig::QualnavSettings{}), std::invalid_argument);
+  const sim::World w = small_world();
+  rig::QualnavSettings s;
+  s.sensing.range_error = -0.1;
+  EXPECT_THROW(rig::QualnavSystem(w, s), std::invalid_argument);
+  const rig::QualnavSystem system(w, rig::QualnavSettings{});
+  EXPECT_THROW((void)system.plan(0, 0), std::invalid_argument);
+  EXPECT_THROW((void)system.plan(0, 10), std::invalid_argument);
+}
+
+// The papers' claim at their 50 % range error, with power: 150 journeys must reach the goal in at
+// least 145. At a true rate of 99.5 % this fails with probability 0.0001 (exact binomial), at 99 %
+// with 0.004; at 97 % with 0.30, at 95 % (the target) with 0.77, at 92 % with 0.98: a drop of a few
+// points below what it measures (rig journeys on this world: 100 %) fails it.
+TEST(QualnavSystem, GoalRateAtFiftyPercentRangeError) {
+  const sim::World w = small_world();
+  const rig::QualnavSystem system(w, rig::QualnavSettings{});
+  const auto plans = rig::draw_plans(system, w.objects.size(), 150, 21);
+  rig::JourneySettings js;
+  js.seed = 4;
+  const rig::TrialsSummary t = rig::run_trials(system, plans, w, js, 0);
+  EXPECT_GE(t.reached(), 145) << t.reached() << " of 150";
 }
 
 }  // namespace

@@ -145,7 +145,13 @@ class Journey {
   // A clearance-keeping move towards `bearing` by the latest look's guard; nullopt: none is safe.
   std::optional<Vector2d> safe(const Viewframe& /*now*/, double bearing, double length,
                                std::optional<LandmarkId> ignore) {
-    const std::optional<Vector2d> m = safe_move(guard_, bearing, length, config_.clearance, ignore);
+    std::optional<Vector2d> m = safe_move(guard_, bearing, length, config_.clearance, ignore);
+    // Blocked by range bounds too loose to tell: look again from here; each look's range error is
+    // drawn afresh, so the fused bounds close in on the truth.
+    for (int again = 0; !m && again < config_.extra_looks; ++again) {
+      look();
+      m = safe_move(guard_, bearing, length, config_.clearance, ignore);
+    }
     if (m && std::abs(wrap_angle(std::atan2(m->y(), m->x()) - bearing)) > 1e-6) ++report_.detours;
     return m;
   }
@@ -170,6 +176,7 @@ class Journey {
   };
   std::map<LandmarkId, RangeBound> bounds_;
   Viewframe guard_;
+  std::optional<Vector2d> smoothed_;  // the running mean of the heading steps' directions
 };
 
 NavigationReport Journey::run() {
@@ -191,7 +198,7 @@ NavigationReport Journey::run() {
     std::optional<std::size_t> nearest;
     for (std::size_t n = 0; n < n_nodes; ++n) {
       if (shared_landmarks(now, memory_.nodes()[n].view).size() < 2) continue;
-      to[n] = headings_.from_view(now, now_cache, n, config_.frames);
+      to[n] = headings_.from_view(config_.fused_ranges ? guard_ : now, now_cache, n, config_.frames);
       if (!to[n]) continue;
       if (!nearest || to[n]->distance < to[*nearest]->distance) nearest = n;
       // A node the robot already stands on is no step: links to it would stall the plan there.
@@ -225,6 +232,13 @@ NavigationReport Journey::run() {
         if (!down.isZero()) bearing = std::atan2(down.y(), down.x());
       }
     }
+    // Steady the steering: each heading is one noisy estimate, so the step follows their running
+    // mean (the tool never turns, so directions in its frame add up).
+    if (smoothed_ && config_.smoothing > 0) {
+      const Vector2d blended = config_.smoothing * *smoothed_ + (1 - config_.smoothing) * unit_of(bearing);
+      if (blended.norm() > 1e-6) bearing = std::atan2(blended.y(), blended.x());
+    }
+    smoothed_ = unit_of(bearing);
     const std::optional<Vector2d> m = safe(now, bearing, std::min(config_.step_mm, h.distance), std::nullopt);
     if (!m) return end(NavigationEnding::blocked, "no step towards the next viewframe keeps the clearance");
     if (!move(*m, true)) return end(NavigationEnding::blocked, "the arm refused a step");
@@ -300,8 +314,9 @@ NavigationReport Journey::approach() {
     if (g == nullptr) return std::nullopt;
     // Sideways first; any move across the bearing gives a parallax, so then obliquely and shorter.
     constexpr std::array<double, 6> kTurns{90, -90, 120, -120, 60, -60};
-    for (int k = 0; k < 12; ++k) {
-      const double length = k < 6 ? config_.parallax_mm : config_.parallax_mm / 2;
+    for (int k = 0; k < 12 * (config_.extra_looks + 1); ++k) {
+      if (k > 0 && k % 12 == 0) look();  // none clear: tighten the bounds from here, try again
+      const double length = k % 12 < 6 ? config_.parallax_mm : config_.parallax_mm / 2;
       const Vector2d m = length * unit_of(g->bearing + kTurns[k % 6] * std::numbers::pi / 180);
       const bool clear = std::all_of(guard_.landmarks.begin(), guard_.landmarks.end(), [&](const ViewedLandmark& l) {
         const double gap = track_gap(l, m);

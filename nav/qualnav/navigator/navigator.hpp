@@ -41,6 +41,8 @@ struct NavigatorConfig {
   double parallax_mm = 6;     ///< the sideways baseline of a range by parallax
   double link_mm = kLinkDistanceMm;
   ClearanceRule clearance;
+  /// Looks from where it stands when no move keeps the clearance by the bounds so far.
+  int extra_looks = 6;
   bool hill_climb = false;  ///< descend the goal viewframe's relative angles before the a heading
   /// Steer each step down the relative-angle error to the plan's next viewframe (the hill-climb's
   /// direction, range-free but for its scale) instead of along the viewframe heading, whose length
@@ -50,6 +52,12 @@ struct NavigatorConfig {
   /// Viewframe headings averaged over this many frames (the widest pairs first): one frame rests on
   /// two landmarks' range intervals, several on more.
   int frames = 5;
+  /// Each heading step's direction is this much the previous step's and the rest the new heading's
+  /// (0: none). The headings' noise at large range errors otherwise zig-zags the path.
+  double smoothing = 0.6;
+  /// Localize the view with its range bounds fused over the looks so far (the clearance's) rather
+  /// than the single look's intervals.
+  bool fused_ranges = false;
   HillClimbSettings climb;
 };
 
