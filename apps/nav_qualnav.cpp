@@ -5,11 +5,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <opencv2/imgproc.hpp>
 
 #include "apps/cli_support.hpp"
@@ -127,8 +126,8 @@ int qualnav_one_journey(const NavArgs& a, const sim::World& world, const rig::Qu
                       {"shortcuts", report.shortcuts},
                       {"detours", report.detours},
                       {"path_mm", report.path_mm},
-                      {"path_turning_deg",
-                       rig::route_turning(rig::sample_route(report.path, qn::kViewpathSpacingMm)) * 180 / std::numbers::pi},
+                      {"path_turning_deg", rig::route_turning(rig::sample_route(report.path, qn::kViewpathSpacingMm)) *
+                                               180 / std::numbers::pi},
                       {"frames", r.frames},
                       {"commanded_travel", r.arm.commanded_travel},
                       {"arm_travel", r.arm.true_travel},
@@ -145,18 +144,19 @@ int qualnav_one_journey(const NavArgs& a, const sim::World& world, const rig::Qu
                            qn::navigation_ending_name(report.ending), r.travel.reason.empty() ? "" : ", ",
                            r.travel.reason)
             << fmt::format("{} steps ({} viewframe heading, {} a heading), {} re-plans, {} shortcuts, {} frames\n",
-                           report.steps, report.heading_steps, report.approach_steps, report.replans,
-                           report.shortcuts, r.frames)
-            << fmt::format("path {:.1f} mm turning {:.0f} deg (every 20 mm); arm travel {:.1f} mm\n", report.path_mm,
-                           rig::route_turning(rig::sample_route(report.path, qn::kViewpathSpacingMm)) * 180 /
-                               std::numbers::pi,
-                           r.arm.true_travel);
+                           report.steps, report.heading_steps, report.approach_steps, report.replans, report.shortcuts,
+                           r.frames)
+            << fmt::format(
+                   "path {:.1f} mm turning {:.0f} deg (every 20 mm); arm travel {:.1f} mm\n", report.path_mm,
+                   rig::route_turning(rig::sample_route(report.path, qn::kViewpathSpacingMm)) * 180 / std::numbers::pi,
+                   r.arm.true_travel);
   return kExitOk;
 }
 
 int qualnav_trials(const NavArgs& a, const sim::World& world, const rig::QualnavSystem& system) {
   ProgressBar draw("nav: teaching routes", *a.trials, true);
-  const std::vector<std::unique_ptr<rig::Plan>> plans = rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
+  const std::vector<std::unique_ptr<rig::Plan>> plans =
+      rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
   draw.clear();
   ProgressBar bar("nav", std::ssize(plans), true);
   const rig::TrialsSummary t = rig::run_trials(system, plans, world, qualnav_journey_settings(a), a.threads,
@@ -209,8 +209,8 @@ int qualnav_nav_command(const NavArgs& a) {
   if (!a.diagram.empty()) throw UsageError{"--reliability-diagram is Park & Kender's: Qualnav makes no forecast"};
   if (!a.video.empty()) throw UsageError{"--video is Park & Kender's onboard view"};
   if (!(a.range_error >= 0) || !std::isfinite(a.range_error)) {
-    throw UsageError{fmt::format("--range-error {}: must be finite and not negative (0.5 is the papers' 50 %)",
-                                 a.range_error)};
+    throw UsageError{
+        fmt::format("--range-error {}: must be finite and not negative (0.5 is the papers' 50 %)", a.range_error)};
   }
   if (!(a.sigma_move >= 0) || !(a.sigma_rot >= 0) || !std::isfinite(a.sigma_move) || !std::isfinite(a.sigma_rot)) {
     throw UsageError{"--sigma-move and --sigma-rot must be finite and not negative"};
@@ -223,13 +223,6 @@ int qualnav_nav_command(const NavArgs& a) {
   rig::QualnavSettings settings;
   settings.seed = a.seed;
   settings.sensing.range_error = a.range_error;
-  // TEMP experiment knobs
-  if (const char* v = std::getenv("QN_FRAMES")) settings.navigator.frames = std::atoi(v);
-  if (const char* v = std::getenv("QN_STEER")) settings.navigator.steer_by_angles = std::atoi(v) != 0;
-  if (const char* v = std::getenv("QN_STEP")) settings.navigator.step_mm = std::atof(v);
-  if (const char* v = std::getenv("QN_LINK")) settings.navigator.link_mm = std::atof(v);
-  if (const char* v = std::getenv("QN_SMOOTH")) settings.navigator.smoothing = std::atof(v);
-  if (const char* v = std::getenv("QN_FUSED")) settings.navigator.fused_ranges = std::atoi(v) != 0;
   settings.detour = a.taught_route == "detour";
   const rig::QualnavSystem system(world, settings);
   return a.from ? qualnav_one_journey(a, world, system) : qualnav_trials(a, world, system);

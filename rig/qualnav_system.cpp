@@ -78,11 +78,12 @@ const QualnavPlan& qualnav_plan(const Plan& plan) {
 QualnavSystem::QualnavSystem(const sim::World& world, const QualnavSettings& settings)
     : world_(world), settings_(settings) {
   if (world.objects.size() < 2) {
-    throw std::invalid_argument(
-        fmt::format("Qualnav needs at least two marbles (a pair to localize by); the world has {}", world.objects.size()));
+    throw std::invalid_argument(fmt::format(
+        "Qualnav needs at least two marbles (a pair to localize by); the world has {}", world.objects.size()));
   }
   if (!(settings.sensing.range_error >= 0) || !std::isfinite(settings.sensing.range_error)) {
-    throw std::invalid_argument(fmt::format("range error {}: must be finite and not negative", settings.sensing.range_error));
+    throw std::invalid_argument(
+        fmt::format("range error {}: must be finite and not negative", settings.sensing.range_error));
   }
   settings_.navigator.clearance.marble_radius_mm = world.marble_diameter / 2;
 }
@@ -122,7 +123,7 @@ std::unique_ptr<Plan> QualnavSystem::plan(std::uint32_t from, std::uint32_t to) 
   const Vector2d start = world_.objects[from] + p->start_offset;
   auto route = settings_.detour ? teach_detour(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm,
                                                (from + to) % 2 == 0 ? 1.0 : -1.0)
-                                 : teach_route(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm);
+                                : teach_route(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm);
   if (!route) {
     throw UnreachableGoal(fmt::format("no route from object {} to {} keeps {} mm from the marbles", from, to,
                                       settings_.route_clearance_mm));
@@ -152,12 +153,10 @@ Travel QualnavSystem::travel(const Plan& plan, Equipment& equipment, Witness& wi
   sim::Random range_noise(
       stream_seed(stream_seed(p.seed, kJourneyRangeStream), std::bit_cast<std::uint64_t>(first_compass)));
   const double e = settings_.sensing.range_error;
-  qn::RingViewSource eye(equipment.camera, *equipment.compass,
-                         nav::PanoramaModel{world_.marble_diameter / 2, settings_.sensing.bearing_noise_deg},
-                         qualnav_interval_factor(e),
-                         [&](std::vector<nav::PanoramaSighting>& s) {
-                           apply_range_error(s, e, [&] { return range_noise.uniform(); });
-                         });
+  qn::RingViewSource eye(
+      equipment.camera, *equipment.compass,
+      nav::PanoramaModel{world_.marble_diameter / 2, settings_.sensing.bearing_noise_deg}, qualnav_interval_factor(e),
+      [&](std::vector<nav::PanoramaSighting>& s) { apply_range_error(s, e, [&] { return range_noise.uniform(); }); });
   GoalRelay relay(plan, witness);
   qn::NavigationReport report = qn::navigate(*p.memory, plan.goal, eye, equipment.arm, settings_.navigator, &relay);
   t.ending = qualnav_ending(report.ending);

@@ -27,11 +27,11 @@
 namespace neopipe::rig {
 
 struct QualnavSettings {
-  QualnavSensing sensing;            ///< range error e (0.5: the papers' 50 %) and bearing noise
-  std::uint64_t seed = 1;            ///< the recordings' noise; the journeys' range errors derive from it too
-  double route_clearance_mm = 14;    ///< the taught routes keep this from every marble's surface
-  double route_end_mm = 20;          ///< the taught route ends this far from the goal's centre
-  bool detour = false;               ///< teach roundabout routes (teach_detour) instead of the shortest
+  QualnavSensing sensing;          ///< range error e (0.5: the papers' 50 %) and bearing noise
+  std::uint64_t seed = 1;          ///< the recordings' noise; the journeys' range errors derive from it too
+  double route_clearance_mm = 14;  ///< the taught routes keep this from every marble's surface
+  double route_end_mm = 20;        ///< the taught route ends this far from the goal's centre
+  bool detour = false;             ///< teach roundabout routes (teach_detour) instead of the shortest
   nav::qualnav::NavigatorConfig navigator;
 };
 

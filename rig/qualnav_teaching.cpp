@@ -51,7 +51,8 @@ std::optional<std::vector<Vector2d>> teach_route_to(const sim::World& world, con
   const auto at = [&](int i, int j) { return Vector2d(i * kCellMm, j * kCellMm); };
   std::vector<char> blocked(static_cast<std::size_t>(w) * h);
   for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) blocked[static_cast<std::size_t>(j) * w + i] = nearest_centre(world, at(i, j)) < required;
+    for (int i = 0; i < w; ++i)
+      blocked[static_cast<std::size_t>(j) * w + i] = nearest_centre(world, at(i, j)) < required;
   }
   const int si = std::clamp(static_cast<int>(std::lround(from.x() / kCellMm)), 0, w - 1);
   const int sj = std::clamp(static_cast<int>(std::lround(from.y() / kCellMm)), 0, h - 1);
@@ -179,11 +180,14 @@ std::vector<nav::qualnav::Viewframe> record_viewpath(const sim::World& world, co
     std::vector<nav::PanoramaSighting> sightings = reader.read(ring.image);
     apply_range_error(sightings, sensing.range_error, [&] { return range_noise.uniform(); });
     const double compass = std::fmod(compass_noise.normal(0, panorama.compass_sigma_deg) + 360, 360);
-    out.push_back(nav::qualnav::viewframe_from_sightings(sightings, compass, qualnav_interval_factor(sensing.range_error)));
+    out.push_back(
+        nav::qualnav::viewframe_from_sightings(sightings, compass, qualnav_interval_factor(sensing.range_error)));
   }
   return out;
 }
 
-double qualnav_interval_factor(double range_error) { return 1 + range_error + kRangeEstimateSlack; }
+double qualnav_interval_factor(double range_error) {
+  return 1 + range_error + kRangeEstimateSlack;
+}
 
 }  // namespace neopipe::rig

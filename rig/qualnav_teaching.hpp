@@ -59,7 +59,8 @@ double route_turning(const std::vector<Eigen::Vector2d>& route);
 
 /// The viewframes recorded at `points` (tool heading 0): each ring rendered by the simulator, read by
 /// the engine's panorama graph, its ranges distorted by `sensing`, the compass read with its 1° error.
-std::vector<nav::qualnav::Viewframe> record_viewpath(const sim::World& world, const std::vector<Eigen::Vector2d>& points,
+std::vector<nav::qualnav::Viewframe> record_viewpath(const sim::World& world,
+                                                     const std::vector<Eigen::Vector2d>& points,
                                                      const QualnavSensing& sensing, std::uint64_t seed);
 
 /// Scales each sighting's range estimate by a factor log-uniform in [1/(1+e), 1+e] from `u`

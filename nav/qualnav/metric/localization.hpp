@@ -40,11 +40,11 @@ double locus_angle(double r1, double r2, double theta);
 using FramePositions = std::map<LandmarkId, Eigen::Vector2d>;
 
 struct LocalizationOptions {
-  double resolution_mm = 1;        ///< the raster (Decision: 1 mm)
-  double error_scale = 1;          ///< multiplies every e_ij (a fallback may widen them)
-  bool use_ranges = true;          ///< intersect with the range annuli
-  bool keep_cells = false;         ///< fill Localization::cells
-  std::size_t max_cells = 4000000; ///< a raster larger than this many cells is refused (empty)
+  double resolution_mm = 1;         ///< the raster (Decision: 1 mm)
+  double error_scale = 1;           ///< multiplies every e_ij (a fallback may widen them)
+  bool use_ranges = true;           ///< intersect with the range annuli
+  bool keep_cells = false;          ///< fill Localization::cells
+  std::size_t max_cells = 4000000;  ///< a raster larger than this many cells is refused (empty)
 };
 
 struct Localization {

@@ -8,7 +8,8 @@
 namespace neopipe::nav::qualnav {
 
 const ViewedLandmark* Viewframe::find(LandmarkId id) const {
-  const auto it = std::find_if(landmarks.begin(), landmarks.end(), [id](const ViewedLandmark& l) { return l.id == id; });
+  const auto it =
+      std::find_if(landmarks.begin(), landmarks.end(), [id](const ViewedLandmark& l) { return l.id == id; });
   return it == landmarks.end() ? nullptr : &*it;
 }
 
@@ -33,7 +34,9 @@ double wrap_angle(double a) {
   return a <= -std::numbers::pi ? a + 2 * std::numbers::pi : a;
 }
 
-double angle_between(const ViewedLandmark& i, const ViewedLandmark& j) { return wrap_angle(j.bearing - i.bearing); }
+double angle_between(const ViewedLandmark& i, const ViewedLandmark& j) {
+  return wrap_angle(j.bearing - i.bearing);
+}
 
 std::vector<LandmarkId> shared_landmarks(const Viewframe& a, const Viewframe& b) {
   std::vector<LandmarkId> out;

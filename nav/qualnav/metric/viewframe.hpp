@@ -5,21 +5,23 @@
 // two viewframes taken at different headings compare directly; the compass relates them to the
 // world when a heading must be turned into a move.
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 namespace neopipe::nav::qualnav {
 
-using LandmarkId = std::uint32_t;
+// The same alias as the topology level's (nav/qualnav/topology/lpb.hpp), so both may be included.
+using LandmarkId = std::size_t;
 
 struct ViewedLandmark {
   LandmarkId id = 0;
-  double bearing = 0;      ///< rad in [0, 2π), counter-clockwise from the sensor's (tool's) +x axis
-  double error = 0;        ///< rad: the bearing is within this of the truth
-  double range = 0;        ///< mm, the sensor's estimate d̂
-  double range_lo = 0;     ///< mm: the true range is in [range_lo, range_hi]
-  double range_hi = 0;     ///< mm
+  double bearing = 0;   ///< rad in [0, 2π), counter-clockwise from the sensor's (tool's) +x axis
+  double error = 0;     ///< rad: the bearing is within this of the truth
+  double range = 0;     ///< mm, the sensor's estimate d̂
+  double range_lo = 0;  ///< mm: the true range is in [range_lo, range_hi]
+  double range_hi = 0;  ///< mm
   [[nodiscard]] double range_mid() const { return (range_lo + range_hi) / 2; }
 };
 

@@ -8,9 +8,11 @@ namespace neopipe::nav::qualnav {
 
 using Eigen::Vector2d;
 
-LandmarkPair make_pair_key(LandmarkId a, LandmarkId b) { return a < b ? LandmarkPair{a, b} : LandmarkPair{b, a}; }
+PairKey make_pair_key(LandmarkId a, LandmarkId b) {
+  return a < b ? PairKey{a, b} : PairKey{b, a};
+}
 
-std::optional<double> pair_separation(const Viewframe& view, LandmarkPair pair) {
+std::optional<double> pair_separation(const Viewframe& view, PairKey pair) {
   const ViewedLandmark* i = view.find(pair.first);
   const ViewedLandmark* j = view.find(pair.second);
   if (i == nullptr || j == nullptr) return std::nullopt;
@@ -22,7 +24,7 @@ std::optional<double> pair_separation(const Viewframe& view, LandmarkPair pair) 
 void FrameScales::add(const Viewframe& view) {
   for (std::size_t a = 0; a < view.landmarks.size(); ++a) {
     for (std::size_t b = a + 1; b < view.landmarks.size(); ++b) {
-      const LandmarkPair key = make_pair_key(view.landmarks[a].id, view.landmarks[b].id);
+      const PairKey key = make_pair_key(view.landmarks[a].id, view.landmarks[b].id);
       auto& [sum, n] = sums_[key];
       sum += *pair_separation(view, key);
       ++n;
@@ -30,13 +32,15 @@ void FrameScales::add(const Viewframe& view) {
   }
 }
 
-std::optional<double> FrameScales::scale(LandmarkPair pair) const {
+std::optional<double> FrameScales::scale(PairKey pair) const {
   const auto it = sums_.find(pair);
   if (it == sums_.end()) return std::nullopt;
   return it->second.first / it->second.second;
 }
 
-FramePositions PairFrame::positions() const { return {{first, Vector2d::Zero()}, {second, Vector2d(s, 0)}}; }
+FramePositions PairFrame::positions() const {
+  return {{first, Vector2d::Zero()}, {second, Vector2d(s, 0)}};
+}
 
 std::vector<PairFrame> candidate_frames(const Viewframe& a, const Viewframe& b, const FrameScales& scales,
                                         double max_separation) {
@@ -49,7 +53,7 @@ std::vector<PairFrame> candidate_frames(const Viewframe& a, const Viewframe& b, 
       const double sep_a = std::abs(angle_between(ai, aj));
       const double sep_b = std::abs(angle_between(*b.find(shared[x]), *b.find(shared[y])));
       if (std::max(sep_a, sep_b) >= max_separation) continue;
-      const LandmarkPair key = make_pair_key(shared[x], shared[y]);
+      const PairKey key = make_pair_key(shared[x], shared[y]);
       // Neither viewframe in the scales: the two viewframes' own average.
       const double s = scales.scale(key).value_or((*pair_separation(a, key) + *pair_separation(b, key)) / 2);
       if (!(s > 0)) continue;
@@ -98,8 +102,8 @@ double sensor_bearing_of(const Viewframe& view, const PairFrame& frame, const Ve
   return std::atan2(sum.y(), sum.x());
 }
 
-std::optional<ViewframeHeading> viewframe_heading(const Viewframe& from, const Viewframe& to,
-                                                  const FrameScales& scales, const LocalizationOptions& options) {
+std::optional<ViewframeHeading> viewframe_heading(const Viewframe& from, const Viewframe& to, const FrameScales& scales,
+                                                  const LocalizationOptions& options) {
   const std::optional<PairFrame> frame = choose_frame(from, to, scales);
   if (!frame) return std::nullopt;
   const Localization a = localize_in_frame(from, *frame, options);

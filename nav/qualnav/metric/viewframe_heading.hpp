@@ -20,21 +20,21 @@
 namespace neopipe::nav::qualnav {
 
 /// An unordered landmark pair, smaller id first.
-using LandmarkPair = std::pair<LandmarkId, LandmarkId>;
-LandmarkPair make_pair_key(LandmarkId a, LandmarkId b);
+using PairKey = std::pair<LandmarkId, LandmarkId>;
+PairKey make_pair_key(LandmarkId a, LandmarkId b);
 
 /// s² = m_i² + m_j² − 2·m_i·m_j·cos Ang_ij on the interval midpoints; nullopt unless `view` sees both.
-std::optional<double> pair_separation(const Viewframe& view, LandmarkPair pair);
+std::optional<double> pair_separation(const Viewframe& view, PairKey pair);
 
 /// The frame's s of each pair, averaged over the viewframes added.
 class FrameScales {
  public:
   void add(const Viewframe& view);
   /// The average s of `pair`, or nullopt when no viewframe added saw it.
-  [[nodiscard]] std::optional<double> scale(LandmarkPair pair) const;
+  [[nodiscard]] std::optional<double> scale(PairKey pair) const;
 
  private:
-  std::map<LandmarkPair, std::pair<double, int>> sums_;
+  std::map<PairKey, std::pair<double, int>> sums_;
 };
 
 /// The frame of a pair: L1 = (0,0), L2 = (s,0). `first` is L1.
@@ -61,7 +61,7 @@ struct ViewframeHeading {
   Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< c2
   Eigen::Vector2d h = Eigen::Vector2d::Zero();     ///< c2 − c1, in the frame
   double distance = 0;                             ///< |h|, mm
-  double sensor_bearing = 0;  ///< rad, counter-clockwise in the first viewframe's sensor frame
+  double sensor_bearing = 0;                       ///< rad, counter-clockwise in the first viewframe's sensor frame
 };
 
 /// Localizes a viewframe in a pair frame: exactly, then with the bearing errors widened fourfold,
@@ -73,7 +73,7 @@ double sensor_bearing_of(const Viewframe& view, const PairFrame& frame, const Ei
                          const Eigen::Vector2d& v);
 
 /// The heading from `from` to `to` (nullopt: no frame, or a viewframe not localized).
-std::optional<ViewframeHeading> viewframe_heading(const Viewframe& from, const Viewframe& to,
-                                                  const FrameScales& scales, const LocalizationOptions& options = {});
+std::optional<ViewframeHeading> viewframe_heading(const Viewframe& from, const Viewframe& to, const FrameScales& scales,
+                                                  const LocalizationOptions& options = {});
 
 }  // namespace neopipe::nav::qualnav

@@ -18,10 +18,10 @@ struct HillClimbSettings {
 };
 
 struct ClimbState {
-  double cost = 0;                                   ///< J, rad²
-  double worst_error = 0;                            ///< rad
+  double cost = 0;                                     ///< J, rad²
+  double worst_error = 0;                              ///< rad
   Eigen::Vector2d gradient = Eigen::Vector2d::Zero();  ///< ∂J/∂P in `now`'s sensor frame, rad²/mm
-  int pairs = 0;                                     ///< consecutive goal landmarks both in view
+  int pairs = 0;                                       ///< consecutive goal landmarks both in view
 };
 
 /// J, its gradient and the worst angle error of `now` against `goal` over the landmarks both see.

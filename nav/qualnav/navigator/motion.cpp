@@ -18,7 +18,9 @@ double point_segment_distance(const Vector2d& p, const Vector2d& a, const Vector
   return (a + t * ab - p).norm();
 }
 
-Vector2d unit(double bearing) { return {std::cos(bearing), std::sin(bearing)}; }
+Vector2d unit(double bearing) {
+  return {std::cos(bearing), std::sin(bearing)};
+}
 
 }  // namespace
 
@@ -27,9 +29,9 @@ double track_gap(const ViewedLandmark& l, const Vector2d& end) {
   const Vector2d b = l.range_hi * unit(l.bearing);
   // Distance between two segments in the plane: they do not cross when the landmark is not on the
   // track (a crossing gives 0 from the endpoint tests below only approximately, so sample too).
-  double gap = std::min({point_segment_distance(Vector2d::Zero(), a, b), point_segment_distance(end, a, b),
-                         point_segment_distance(a, Vector2d::Zero(), end),
-                         point_segment_distance(b, Vector2d::Zero(), end)});
+  double gap =
+      std::min({point_segment_distance(Vector2d::Zero(), a, b), point_segment_distance(end, a, b),
+                point_segment_distance(a, Vector2d::Zero(), end), point_segment_distance(b, Vector2d::Zero(), end)});
   const double cross_ab = (b - a).x() * end.y() - (b - a).y() * end.x();
   if (std::abs(cross_ab) > 1e-12) {
     // Proper intersection of origin→end with a→b.
@@ -41,7 +43,9 @@ double track_gap(const ViewedLandmark& l, const Vector2d& end) {
   return gap;
 }
 
-double current_gap(const ViewedLandmark& l) { return l.range_lo; }
+double current_gap(const ViewedLandmark& l) {
+  return l.range_lo;
+}
 
 std::optional<Vector2d> safe_move(const Viewframe& view, double bearing, double length, const ClearanceRule& rule,
                                   std::optional<LandmarkId> ignore) {

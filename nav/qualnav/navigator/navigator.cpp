@@ -18,7 +18,9 @@ namespace {
 using Eigen::Vector2d;
 using FrameKey = std::pair<LandmarkId, LandmarkId>;  // (L1, L2) of a PairFrame
 
-Vector2d unit_of(double bearing) { return {std::cos(bearing), std::sin(bearing)}; }
+Vector2d unit_of(double bearing) {
+  return {std::cos(bearing), std::sin(bearing)};
+}
 
 // A heading from the view just taken to a remembered viewframe.
 struct StepHeading {
@@ -34,8 +36,8 @@ class MemoryHeadings {
 
   // The heading from `now` (localized per frame in `now_cache`) to node `n`, averaged over up to
   // `frames` frames as moves in the sensor frame.
-  std::optional<StepHeading> from_view(const Viewframe& now, std::map<FrameKey, Localization>& now_cache,
-                                       std::size_t n, int frames) {
+  std::optional<StepHeading> from_view(const Viewframe& now, std::map<FrameKey, Localization>& now_cache, std::size_t n,
+                                       int frames) {
     const Viewframe& there = memory_.nodes()[n].view;
     Vector2d sum = Vector2d::Zero();
     int used = 0;
@@ -290,7 +292,8 @@ NavigationReport Journey::approach() {
     const ViewedLandmark* g = now.find(goal_);
     if (g == nullptr) {
       // Hidden behind a nearer marble: step aside of where it was last seen, a few times.
-      if (!last_goal_bearing || ++hidden > 4) return end(NavigationEnding::goal_lost, "the goal left the view on its a heading");
+      if (!last_goal_bearing || ++hidden > 4)
+        return end(NavigationEnding::goal_lost, "the goal left the view on its a heading");
       const double side = hidden % 2 == 1 ? 1.0 : -1.0;
       const std::optional<Vector2d> m =
           safe(now, *last_goal_bearing + side * std::numbers::pi / 2, config_.parallax_mm * hidden, goal_);

@@ -33,12 +33,12 @@
 namespace neopipe::nav::qualnav {
 
 struct NavigatorConfig {
-  double step_mm = 10;        ///< one step of a viewframe heading (re-plan after each)
-  int max_steps = 400;        ///< moves of every kind
-  double stop_mm = 15;        ///< the a heading stops this far from the goal's centre (Decision)
-  double approach_mm = 40;    ///< a heading once the goal's whole range interval is nearer than this
-  double handover_mm = 12;    ///< ... or the heading to the goal viewframe is shorter than this
-  double parallax_mm = 6;     ///< the sideways baseline of a range by parallax
+  double step_mm = 10;      ///< one step of a viewframe heading (re-plan after each)
+  int max_steps = 400;      ///< moves of every kind
+  double stop_mm = 15;      ///< the a heading stops this far from the goal's centre (Decision)
+  double approach_mm = 40;  ///< a heading once the goal's whole range interval is nearer than this
+  double handover_mm = 12;  ///< ... or the heading to the goal viewframe is shorter than this
+  double parallax_mm = 6;   ///< the sideways baseline of a range by parallax
   double link_mm = kLinkDistanceMm;
   ClearanceRule clearance;
   /// Looks from where it stands when no move keeps the clearance by the bounds so far.
@@ -88,20 +88,20 @@ class GoalObserver {
 struct NavigationReport {
   NavigationEnding ending = NavigationEnding::arrived;
   std::string reason;
-  int steps = 0;            ///< moves commanded (every kind)
-  int heading_steps = 0;    ///< of which viewframe-heading steps
-  int climb_steps = 0;      ///< hill-climb steps
-  int approach_steps = 0;   ///< a-heading steps, parallax moves included
-  int detours = 0;          ///< moves turned away from their heading for the clearance
-  int replans = 0;          ///< A* runs
-  int shortcuts = 0;        ///< plans whose next node skips remembered viewframes of the previous plan
+  int steps = 0;                        ///< moves commanded (every kind)
+  int heading_steps = 0;                ///< of which viewframe-heading steps
+  int climb_steps = 0;                  ///< hill-climb steps
+  int approach_steps = 0;               ///< a-heading steps, parallax moves included
+  int detours = 0;                      ///< moves turned away from their heading for the clearance
+  int replans = 0;                      ///< A* runs
+  int shortcuts = 0;                    ///< plans whose next node skips remembered viewframes of the previous plan
   std::vector<std::size_t> first_plan;  ///< memory nodes of the first plan
-  double commanded_mm = 0;  ///< the moves' total length
+  double commanded_mm = 0;              ///< the moves' total length
   /// The sum of the absolute turns between consecutive path moves (heading, hill-climb and a-heading
   /// steps; the parallax moves and the stop are left out), rad: how smooth the executed path is.
   double path_turning = 0;
-  double path_mm = 0;  ///< the path moves' total length (to where the stop's parallax begins)
-  double goal_range_mm = 0; ///< the parallax range at the stop
+  double path_mm = 0;        ///< the path moves' total length (to where the stop's parallax begins)
+  double goal_range_mm = 0;  ///< the parallax range at the stop
   Eigen::Vector2d claimed_offset = Eigen::Vector2d::Zero();
   /// Where the path moves took the tool by dead reckoning, in the start's tool frame, start first.
   std::vector<Eigen::Vector2d> path;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <random>
 
@@ -111,6 +112,9 @@ TEST(Localization, ShrinksAsLandmarksAreAdded) {
     for (std::size_t i = 0; i < n; ++i) known[static_cast<q::LandmarkId>(i)] = l[i];
     const q::Localization loc = q::localize(v, known);
     ASSERT_FALSE(loc.empty()) << n;
+    // docs/qualnav-navigation.md quotes these (50 % ranges, e = 0.1 rad).
+    std::cout << "landmarks " << n << ": " << loc.area_mm2() << " mm2, centroid " << loc.centroid.transpose()
+              << ", box " << (loc.max - loc.min).transpose() << " mm\n";
     if (n > 2) {
       EXPECT_LT(loc.count, previous) << n;
     }
