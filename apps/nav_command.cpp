@@ -262,10 +262,11 @@ int trials(const NavArgs& a, const Setup& s) {
 CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
-  cmd->add_option("--system", a.system,
-                  "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
-                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
-                  "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor")
+  cmd->add_option(
+         "--system", a.system,
+         "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
+         "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
+         "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor")
       ->check(CLI::IsMember({"park-kender", "qrm", "qualnav"}))
       ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
@@ -345,6 +346,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
 }
 
 int nav_command(const NavArgs& a) {
+  if (a.system != "qualnav" && (a.range_error != NavArgs{}.range_error || a.taught_route != NavArgs{}.taught_route)) {
+    throw UsageError{"--range-error and --taught-route go with --system qualnav"};
+  }
   if (a.system == "qrm") return qrm_nav_command(a);
   if (a.system == "qualnav") return qualnav_nav_command(a);
   if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};

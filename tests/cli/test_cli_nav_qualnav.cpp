@@ -107,4 +107,7 @@ TEST_F(NavQualnavCli, BadInputIsOneLine) {
   expect_one_line_error(run_neopipe(qualnav({"--trials", "2", "--plot", file("p.png")})), 2, "--plot");
   expect_one_line_error(run_neopipe(qualnav({"--from", "0", "--to", "1", "--plot", file("p.txt")})), 2, ".png");
   expect_one_line_error(run_neopipe(qualnav({"--trials", "2", "--pairs", file("x.json")})), 2, "--pairs");
+  expect_one_line_error(
+      run_neopipe({"nav", "--system", "qrm", "--world", world(), "--trials", "2", "--range-error", "1"}), 2,
+      "--system qualnav");
 }
