@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "nav/qualnav/metric/viewframe.hpp"
 #include "nav/qualnav/navigator/hill_climb.hpp"
 #include "nav/qualnav/navigator/motion.hpp"
+#include "nav/qualnav/navigator/orientation_heading.hpp"
 
 namespace {
 
@@ -85,6 +87,32 @@ TEST(SafeMove, KeepsTheClearanceOfEveryPossiblePosition) {
   ASSERT_TRUE(free.has_value());
   EXPECT_NEAR(free->x(), 10, 1e-9);
   EXPECT_NEAR(free->y(), 0, 1e-9);
+}
+
+// P (−10, 100) left of Q (10, 100) seen from the origin: b heads between them, l passes beyond P,
+// r beyond Q, a at P; whatever the tool's heading.
+TEST(OrientationHeading, ControlLawsOfTheDecision) {
+  constexpr double kDeg = std::numbers::pi / 180;
+  for (const double heading : {0.0, 1.0, -2.5}) {
+    std::vector<q::ViewedLandmark> v;
+    for (const auto& [id, at] : {std::pair<q::LandmarkId, Vector2d>{7, {-10, 100}}, {9, {10, 100}}}) {
+      v.push_back({id, std::atan2(at.y(), at.x()) - heading, 0.0035, at.norm(), at.norm(), at.norm()});
+    }
+    const q::Viewframe view = q::make_viewframe(v, heading);
+    const auto world = [&](q::OrientationKind k) {
+      return q::wrap_angle(*q::orientation_heading(k, 7, 9, view) + heading);
+    };
+    const double p = std::atan2(100.0, -10.0);
+    const double qq = std::atan2(100.0, 10.0);
+    EXPECT_NEAR(world(q::OrientationKind::b), 90 * kDeg, 1e-9);
+    EXPECT_NEAR(world(q::OrientationKind::l), p + 10 * kDeg, 1e-9);
+    EXPECT_NEAR(world(q::OrientationKind::r), qq - 10 * kDeg, 1e-9);
+    EXPECT_NEAR(world(q::OrientationKind::a), p, 1e-9);
+    // l crosses the LPB's line y = 100 beyond P (x < −10), r beyond Q (x > 10), b between.
+    EXPECT_LT(100 / std::tan(world(q::OrientationKind::l)), -10);
+    EXPECT_GT(100 / std::tan(world(q::OrientationKind::r)), 10);
+    EXPECT_FALSE(q::orientation_heading(q::OrientationKind::b, 7, 8, view).has_value());
+  }
 }
 
 }  // namespace
