@@ -131,12 +131,12 @@ std::vector<Vector2d> sample_route(const std::vector<Vector2d>& route, double sp
   out.push_back(route.front());
   double carried = 0;  // distance since the last sample
   for (std::size_t k = 1; k < route.size(); ++k) {
-    const Vector2d a = route[k - 1];
+    const Vector2d& a = route[k - 1];
     const Vector2d d = route[k] - a;
     const double len = d.norm();
     double t = spacing_mm - carried;
     while (t <= len) {
-      out.push_back(a + d * (t / len));
+      out.emplace_back(a + d * (t / len));
       t += spacing_mm;
     }
     carried = len - (t - spacing_mm);

@@ -35,7 +35,7 @@ double track_gap(const ViewedLandmark& l, const Vector2d& end) {
   const double cross_ab = (b - a).x() * end.y() - (b - a).y() * end.x();
   if (std::abs(cross_ab) > 1e-12) {
     // Proper intersection of origin→end with a→b.
-    const Vector2d d = a;
+    const Vector2d& d = a;
     const double t = (d.x() * (b - a).y() - d.y() * (b - a).x()) / (end.x() * (b - a).y() - end.y() * (b - a).x());
     const double u = (d.x() * end.y() - d.y() * end.x()) / (end.x() * (b - a).y() - end.y() * (b - a).x());
     if (t >= 0 && t <= 1 && u >= 0 && u <= 1) gap = 0;
