@@ -282,11 +282,13 @@ int trials(const NavArgs& a, const Setup& s) {
 CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   CLI::App* cmd = app.add_subcommand(
       "nav", "Navigator in the simulator: one journey (--from/--to) or --trials N random journeys and their outcomes");
-  cmd->add_option("--system", a.system,
-                  "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
-                  "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; nx: NX (qualnav.md §9) on the "
-                  "range ring, its map learned by exploring first")
-      ->check(CLI::IsMember({"park-kender", "qrm", "nx"}))
+  cmd->add_option(
+         "--system", a.system,
+         "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
+         "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
+         "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor; nx: "
+         "NX (qualnav.md §9) on the range ring, its map learned by exploring first")
+      ->check(CLI::IsMember({"park-kender", "qrm", "qualnav", "nx"}))
       ->capture_default_str();
   cmd->add_option("--world", a.world, "World file (YAML, as neopipe sim world writes)")->required();
   cmd->add_option("--from", a.from, "Start object id (one journey)");
@@ -355,18 +357,29 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "Trials: run only shard I of K of the --trials journeys (seeded as in the whole run) and print "
                   "them as JSON; `neopipe batch merge-shards` merges the K shards into the unsharded --json")
       ->type_name("I/K");
-  cmd->add_option("--range-error", a.range_error, "nx: the range ring's relative error bound (0: off)")
-      ->capture_default_str();
+  cmd->add_option("--range-error", a.range_error,
+                  "qualnav: the range error e the sensor's range estimates carry (a factor log-uniform in [1/(1+e), "
+                  "1+e] per sighting) and the navigator's intervals allow (default 0.5, the papers' 50 %); nx: the "
+                  "range ring's relative error bound (default 0.1; 0: off)");
   cmd->add_option("--places", a.places, "nx: the exploration stops after this many places")->capture_default_str();
+  cmd->add_option("--taught-route", a.taught_route,
+                  "qualnav: the routes the harness teaches (its memory): shortest (clear of the marbles) or detour "
+                  "(via a point off to the side, leaving shortcuts to find)")
+      ->check(CLI::IsMember({"shortest", "detour"}))
+      ->capture_default_str();
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
 
 int nav_command(const NavArgs& a) {
-  if (!a.shard.empty() && a.system != "park-kender") throw UsageError{"--shard: only --system park-kender's trials"};
-  if (a.system == "qrm") return qrm_nav_command(a);
-  if (a.system == "nx") return nx_nav_command(a);
-  if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
+  cmd->add_option(
+         "--system", a.system,
+         "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
+         "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
+         "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor; nx: "
+         "NX (qualnav.md §9) on the range ring, its map learned by exploring first")
+      ->check(CLI::IsMember({"park-kender", "qrm", "qualnav", "nx"})) if (!a.pairs.empty()) throw UsageError{
+          "--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {
     throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};

@@ -11,7 +11,7 @@
 namespace neopipe::apps {
 
 struct NavArgs {
-  std::string system = "park-kender";  ///< park-kender | qrm | nx
+  std::string system = "park-kender";  ///< park-kender | qrm | qualnav | nx
   std::string world;
   std::optional<std::int64_t> from;
   std::optional<std::int64_t> to;
@@ -43,8 +43,11 @@ struct NavArgs {
   std::int64_t images = 30;  ///< qrm: imaging positions of the tour that builds the map
   std::int64_t k = 18;       ///< qrm: the k nearest landmarks of an image are fused (spec qrm.md §9)
   std::string pairs;         ///< qrm: journeys between the pairs of a trials JSON instead of random draws
-  double range_error = 0.10;  ///< nx: the range ring's relative error bound
-  std::int64_t places = 40;   ///< nx: the exploration's budget of places
+  /// qualnav: the range estimates' error e, factors in [1/(1+e), 1+e] (default 0.5); nx: the range
+  /// ring's relative error bound (default 0.1).
+  std::optional<double> range_error;
+  std::int64_t places = 40;               ///< nx: the exploration's budget of places
+  std::string taught_route = "shortest";  ///< qualnav: shortest | detour
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);
@@ -53,5 +56,7 @@ int nav_command(const NavArgs& args);
 int qrm_nav_command(const NavArgs& args);
 /// `neopipe nav --system nx` (apps/nav_nx.cpp).
 int nx_nav_command(const NavArgs& args);
+/// `neopipe nav --system qualnav` (apps/nav_qualnav.cpp).
+int qualnav_nav_command(const NavArgs& args);
 
 }  // namespace neopipe::apps

@@ -21,6 +21,11 @@
 namespace neopipe::apps {
 namespace {
 
+// --range-error: its default is this system's own.
+double nx_range_error(const NavArgs& a) {
+  return a.range_error.value_or(0.10);
+}
+
 namespace nx = nav::nx;
 using nlohmann::json;
 
@@ -125,7 +130,7 @@ int nx_trials(const NavArgs& a, const sim::World& world, const rig::NxSystem& sy
   std::cout << fmt::format(
       "{} journeys on {} ({} objects), system nx (explored: {} places, {} edges; range error {}), move {} /mm, "
       "rotation {} deg/mm, seed {}\n\n{:<20} {:>7} {:>8}  {}\n",
-      n, a.world, world.objects.size(), e.report.places, e.report.edges, a.range_error, a.sigma_move, a.sigma_rot,
+      n, a.world, world.objects.size(), e.report.places, e.report.edges, nx_range_error(a), a.sigma_move, a.sigma_rot,
       a.seed, "OUTCOME", "COUNT", "RATE", "95% CI");
   print_outcome_rows(std::cout, t, n);
   std::cout << "\nNX's endings:";
@@ -150,8 +155,8 @@ int nx_nav_command(const NavArgs& a) {
   if (!a.diagram.empty()) throw UsageError{"--reliability-diagram is Park & Kender's: NX makes no forecast"};
   if (!a.video.empty()) throw UsageError{"--video is Park & Kender's onboard view"};
   if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
-  if (!(a.range_error >= 0 && a.range_error < 1)) {
-    throw UsageError{fmt::format("--range-error {}: must lie in [0, 1)", a.range_error)};
+  if (!(nx_range_error(a) >= 0 && nx_range_error(a) < 1)) {
+    throw UsageError{fmt::format("--range-error {}: must lie in [0, 1)", nx_range_error(a))};
   }
   if (a.places < 1) throw UsageError{fmt::format("--places {}: must be at least 1", a.places)};
   if (!(a.sigma_move >= 0) || !(a.sigma_rot >= 0) || !std::isfinite(a.sigma_move) || !std::isfinite(a.sigma_rot)) {
@@ -164,7 +169,7 @@ int nx_nav_command(const NavArgs& a) {
   }
   rig::NxSettings s;
   s.seed = a.seed;
-  s.range_error = a.range_error;
+  s.range_error = nx_range_error(a);
   s.arm = {a.sigma_move, a.sigma_rot};
   s.explore.max_places = static_cast<std::size_t>(a.places);
   ProgressBar bar("nav: NX exploring, places", a.places, true);
