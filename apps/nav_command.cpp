@@ -372,14 +372,17 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
 }
 
 int nav_command(const NavArgs& a) {
-  cmd->add_option(
-         "--system", a.system,
-         "park-kender: the map-maker's custom map on the onboard camera; qrm: the qualitative relational map "
-         "(qrm.md §8) on the panoramic sensor, its map built by an imaging tour first; qualnav: viewframes and a "
-         "visual memory recorded along each journey's taught route (qualnav.md §7) on the panoramic sensor; nx: "
-         "NX (qualnav.md §9) on the range ring, its map learned by exploring first")
-      ->check(CLI::IsMember({"park-kender", "qrm", "qualnav", "nx"})) if (!a.pairs.empty()) throw UsageError{
-          "--pairs goes with --system qrm"};
+  if (!a.shard.empty() && a.system != "park-kender") throw UsageError{"--shard: only --system park-kender's trials"};
+  if (a.range_error && a.system != "qualnav" && a.system != "nx") {
+    throw UsageError{"--range-error goes with --system qualnav or nx"};
+  }
+  if (a.taught_route != NavArgs{}.taught_route && a.system != "qualnav") {
+    throw UsageError{"--taught-route goes with --system qualnav"};
+  }
+  if (a.system == "qrm") return qrm_nav_command(a);
+  if (a.system == "qualnav") return qualnav_nav_command(a);
+  if (a.system == "nx") return nx_nav_command(a);
+  if (!a.pairs.empty()) throw UsageError{"--pairs goes with --system qrm"};
   if (a.from.has_value() != a.to.has_value()) throw UsageError{"--from and --to go together"};
   if (a.from.has_value() == a.trials.has_value()) {
     throw UsageError{"give either --from I --to J (one journey) or --trials N (random journeys)"};
