@@ -30,15 +30,19 @@ rig::ContendersRequest contenders_request(const CompareArgs& a) {
   r.qrm_images = static_cast<std::size_t>(a.images);
   r.qrm_k = static_cast<std::size_t>(a.k);
   r.bearing_noise_deg = a.bearing_noise;
+  r.qualnav_range_error = a.qualnav_range_error;
+  r.nx_range_error = a.nx_range_error;
+  r.nx_places = static_cast<std::size_t>(std::max<std::int64_t>(a.places, 0));
   return r;
 }
 
 void print_table(const CompareArgs& a, const rig::ContenderSet& set, const rig::Comparison& c) {
   std::cout << fmt::format(
       "{} journeys per system on {} ({} objects): the same pairs, arm errors (move {} /mm, rotation {} deg/mm) "
-      "and seed {}; {}; panoramic bearing noise {} deg\n\n",
+      "and seed {}; {}; panoramic bearing noise {} deg; qualnav range error {}; nx range error {}\n\n",
       c.pairs.size(), a.world, set.world().objects.size(), a.sigma_move, a.sigma_rot, a.seed,
-      a.sigma_map ? fmt::format("survey sd {} mm", *a.sigma_map) : std::string("rig survey"), a.bearing_noise);
+      a.sigma_map ? fmt::format("survey sd {} mm", *a.sigma_map) : std::string("rig survey"), a.bearing_noise,
+      a.qualnav_range_error, a.nx_range_error);
   std::cout << fmt::format("{:<12} {:>8} {:>17} {:>10} {:>9} {:>9}  {}\n", "SYSTEM", "GOAL", "95% CI", "PATH/LINE",
                            "FRAMES", "SECONDS", "KNOWS BEFOREHAND");
   for (const rig::ContenderResult& r : c.results) {
@@ -94,6 +98,12 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
   cmd->add_option("--images", a.images, "qrm: imaging positions of the tour that builds its map")
       ->capture_default_str();
   cmd->add_option("--k", a.k, "qrm: the k nearest landmarks of each image are fused")->capture_default_str();
+  cmd->add_option("--qualnav-range-error", a.qualnav_range_error,
+                  "qualnav: the range error e of the panoramic sensor's range estimates (0.5: the papers' 50 %)")
+      ->capture_default_str();
+  cmd->add_option("--nx-range-error", a.nx_range_error, "nx: the range ring's relative error bound (0: off)")
+      ->capture_default_str();
+  cmd->add_option("--places", a.places, "nx: its exploration stops after this many places")->capture_default_str();
   cmd->add_option("--seed", a.seed, "Seed of the surveys, maps, pair draws and every journey's noise")
       ->capture_default_str();
   cmd->add_option("--threads", a.threads, "Journeys run in parallel on this many threads (0: all cores)")
@@ -107,6 +117,7 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& a) {
 int compare_command(const CompareArgs& a) {
   if (a.trials < 1) throw UsageError{fmt::format("--trials {}: must be at least 1", a.trials)};
   if (a.images < 1) throw UsageError{fmt::format("--images {}: must be at least 1", a.images)};
+  if (a.places < 1) throw UsageError{fmt::format("--places {}: must be at least 1", a.places)};
   if (a.k < 3) throw UsageError{fmt::format("--k {}: a triple needs at least 3 landmarks", a.k)};
   if (!a.plot.empty() && std::filesystem::path(a.plot).extension() != ".png") {
     throw UsageError{fmt::format("--plot {}: the comparison plot is a .png", a.plot)};
@@ -146,6 +157,8 @@ int compare_command(const CompareArgs& a) {
     j["sigma_rot"] = a.sigma_rot;
     j["sigma_map"] = a.sigma_map ? nlohmann::json(*a.sigma_map) : nlohmann::json(nullptr);
     j["bearing_noise"] = a.bearing_noise;
+    j["qualnav_range_error"] = a.qualnav_range_error;
+    j["nx_range_error"] = a.nx_range_error;
     std::cout << j.dump() << '\n';
     return kExitOk;
   }

@@ -23,6 +23,9 @@ struct CompareArgs {
   double bearing_noise = 0;  ///< panoramic sensor, degrees
   std::int64_t images = 30;  ///< QRM's imaging tour
   std::int64_t k = 18;       ///< QRM's landmarks per image
+  double qualnav_range_error = 0.5;
+  double nx_range_error = 0.1;
+  std::int64_t places = 40;  ///< NX's exploration budget
   std::uint64_t seed = 1;
   int threads = 0;
   bool json = false;

@@ -6,7 +6,9 @@
 
 #include "nav/mapmaker/map_maker.hpp"
 #include "rig/experiment.hpp"
+#include "rig/nx_system.hpp"
 #include "rig/qrm_system.hpp"
+#include "rig/qualnav_system.hpp"
 
 namespace neopipe::rig {
 namespace {
@@ -39,10 +41,37 @@ Contender qrm_contender(const sim::World& world, const ContendersRequest& reques
           fmt::format("a relational map from a tour of {} panoramas", request.qrm_images)};
 }
 
+Contender qualnav_contender(const sim::World& world, const ContendersRequest& request) {
+  QualnavSettings settings;
+  settings.seed = request.nav.seed;
+  settings.sensing.range_error = request.qualnav_range_error;
+  settings.sensing.bearing_noise_deg = request.bearing_noise_deg;
+  return {std::make_unique<QualnavSystem>(world, settings),
+          "a visual memory: viewframes every 20 mm along the journey's route, taught once"};
+}
+
+Contender nx_contender(const sim::World& world, const ContendersRequest& request) {
+  if (world.objects.size() < 3) {
+    throw RequestError(
+        fmt::format("nx needs at least three marbles; {} has {}", request.nav.world, world.objects.size()));
+  }
+  NxSettings settings;
+  settings.seed = request.nav.seed;
+  settings.range_error = request.nx_range_error;
+  settings.arm = {request.nav.sigma_move, request.nav.sigma_rot};
+  settings.explore.max_places = request.nx_places;
+  const auto total = static_cast<std::int64_t>(request.nx_places);
+  NxExploration exploration = explore_world(world, settings, [&](std::size_t done) {
+    if (request.progress) request.progress("nx: exploring, places", static_cast<std::int64_t>(done), total);
+  });
+  return {std::make_unique<NxSystem>(world, std::move(exploration), settings),
+          fmt::format("nothing: it explores first ({} places)", request.nx_places)};
+}
+
 }  // namespace
 
 std::vector<std::string> contender_names() {
-  return {"park-kender", "qrm"};
+  return {"park-kender", "qrm", "qualnav", "nx"};
 }
 
 ContenderSet make_contenders(const ContendersRequest& request) {
@@ -62,11 +91,21 @@ ContenderSet make_contenders(const ContendersRequest& request) {
   if (!(request.bearing_noise_deg >= 0) || !std::isfinite(request.bearing_noise_deg)) {
     throw RequestError(fmt::format("--bearing-noise {}: must be finite and not negative", request.bearing_noise_deg));
   }
+  if (!(request.qualnav_range_error >= 0) || !std::isfinite(request.qualnav_range_error)) {
+    throw RequestError(
+        fmt::format("--qualnav-range-error {}: must be finite and not negative", request.qualnav_range_error));
+  }
+  if (!(request.nx_range_error >= 0 && request.nx_range_error < 1)) {
+    throw RequestError(fmt::format("--nx-range-error {}: must lie in [0, 1)", request.nx_range_error));
+  }
+  if (request.nx_places < 1) throw RequestError("--places: NX's exploration needs at least one place");
   ContenderSet set;
   set.setup = std::make_unique<NavSetup>(nav_setup(request.nav));
   for (const std::string& name : names) {
     if (name == "park-kender") set.contenders.push_back(park_kender_contender(*set.setup, request.nav));
     if (name == "qrm") set.contenders.push_back(qrm_contender(set.setup->world, request));
+    if (name == "qualnav") set.contenders.push_back(qualnav_contender(set.setup->world, request));
+    if (name == "nx") set.contenders.push_back(nx_contender(set.setup->world, request));
   }
   return set;
 }

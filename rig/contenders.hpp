@@ -1,7 +1,8 @@
 #pragma once
 // The navigation systems a comparison can run, made by name over one world with the settings a
 // user states once: Park & Kender's on the survey (rig/reports.hpp nav_setup), QRM on the map of its
-// imaging tour. Each comes with what it had to know before its first journey.
+// imaging tour, Qualnav on the viewpaths of each journey's taught route, NX on what it explored. Each comes with what
+// it had to know before its first journey.
 
 #include <cstddef>
 #include <functional>
@@ -25,6 +26,9 @@ struct ContendersRequest {
   std::size_t qrm_images = 30;       ///< QRM: imaging positions of the tour that builds its map
   std::size_t qrm_k = 18;            ///< QRM: landmarks of an image fused
   double bearing_noise_deg = 0;      ///< the panoramic sensor's bearing noise (QRM, Qualnav)
+  double qualnav_range_error = 0.5;  ///< Qualnav: the range estimates' error e (the papers' 50 %)
+  double nx_range_error = 0.1;       ///< NX: the range ring's relative error bound
+  std::size_t nx_places = 40;        ///< NX: the exploration's budget of places
   /// Told as each system's preparation advances: a stage ("qrm: imaging tour"), done and total.
   std::function<void(const std::string& stage, std::int64_t done, std::int64_t total)> progress;
 };

@@ -49,7 +49,8 @@ json without_times(json j) {
 TEST_F(CompareCli, HelpNamesTheSystemsAndOptions) {
   const auto r = run_neopipe({"compare", "--help"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* word : {"--world", "--trials", "--systems", "park-kender", "qrm", "--json", "--plot"}) {
+  for (const char* word :
+       {"--world", "--trials", "--systems", "park-kender", "qrm", "qualnav", "nx", "--json", "--plot"}) {
     EXPECT_NE(r.out.find(word), std::string::npos) << word;
   }
 }
@@ -63,9 +64,11 @@ TEST_F(CompareCli, JsonHasEverySystemOnTheSamePairsWhateverTheThreads) {
   EXPECT_EQ(without_times(j), without_times(json::parse(two.out)));
   EXPECT_TRUE(std::filesystem::file_size(file("c.png")) > 1000);
   EXPECT_EQ(j["pairs"], 12);
-  ASSERT_EQ(j["systems"].size(), 2U);
+  ASSERT_EQ(j["systems"].size(), 4U);
   EXPECT_EQ(j["systems"][0]["system"], "park-kender");
   EXPECT_EQ(j["systems"][1]["system"], "qrm");
+  EXPECT_EQ(j["systems"][2]["system"], "qualnav");
+  EXPECT_EQ(j["systems"][3]["system"], "nx");
   for (const json& s : j["systems"]) {
     EXPECT_EQ(s["journeys"], 12);
     const double rate = s["reached_goal_rate"].get<double>();
@@ -73,7 +76,7 @@ TEST_F(CompareCli, JsonHasEverySystemOnTheSamePairsWhateverTheThreads) {
     EXPECT_LE(rate, s["reached_goal_ci95"][1].get<double>());
     EXPECT_FALSE(s["knows"].get<std::string>().empty());
   }
-  ASSERT_EQ(j["mcnemar"].size(), 1U);
+  ASSERT_EQ(j["mcnemar"].size(), 6U);  // every two of the four
   EXPECT_EQ(j["mcnemar"][0]["a"], "park-kender");
 }
 
@@ -89,6 +92,7 @@ TEST_F(CompareCli, BadInputIsOneLineNamingIt) {
   expect_one_line_error(run_neopipe(compare({"--systems", "qrm,magic"})), 2, "magic");
   expect_one_line_error(run_neopipe(compare({"--systems", "qrm,qrm"})), 2, "twice");
   expect_one_line_error(run_neopipe(compare({"--trials", "0"})), 2, "--trials");
+  expect_one_line_error(run_neopipe(compare({"--trials", "2", "--nx-range-error", "1.5"})), 2, "--nx-range-error");
   expect_one_line_error(run_neopipe(compare({"--trials", "2", "--plot", file("c.jpg")})), 2, "c.jpg");
   expect_one_line_error(run_neopipe({"compare", "--world", file("missing.yaml"), "--trials", "2"}), 1, "missing.yaml");
 }
