@@ -64,8 +64,10 @@ void print_table(const CompareArgs& a, const rig::ContenderSet& set, const rig::
   std::int64_t unplanned = 0;
   for (const rig::ContenderResult& r : c.results) unplanned += r.unplanned;
   if (unplanned > 0) {
-    std::cout << fmt::format("\n{} pairs drawn, {} kept (every system could plan them); could not plan:", c.draws,
-                             c.pairs.size());
+    std::cout << fmt::format(
+        "\n{} pairs drawn, {} kept (every system could plan them); could not plan (of the pairs the systems before it "
+        "could):",
+        c.draws, c.pairs.size());
     for (const rig::ContenderResult& r : c.results) std::cout << fmt::format(" {} {}", r.system, r.unplanned);
     std::cout << '\n';
   }

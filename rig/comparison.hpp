@@ -33,13 +33,14 @@ struct Contender {
 struct CommonPlans {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::vector<std::vector<std::unique_ptr<Plan>>> plans;
-  std::int64_t draws = 0;               ///< pairs drawn (distinct start and goal)
-  std::vector<std::int64_t> unplanned;  ///< per system: drawn pairs it alone could not plan
+  std::int64_t draws = 0;  ///< pairs drawn (distinct start and goal)
+  /// Per system: drawn pairs it could not plan, of those every system before it could.
+  std::vector<std::int64_t> unplanned;
 };
 
-/// `count` random pairs of distinct objects that every system can plan (UnreachableGoal from any
-/// skips the pair for all), drawn from one stream of `seed` as rig::draw_plans draws. Throws
-/// std::runtime_error when too few such pairs turn up, std::invalid_argument for no systems.
+/// `count` random pairs of distinct objects that every system can plan (the first UnreachableGoal
+/// skips the pair for all; the systems after it are not asked), drawn from one stream of `seed` as rig::draw_plans
+/// draws. Throws std::runtime_error when too few such pairs turn up, std::invalid_argument for no systems.
 CommonPlans draw_common_plans(const std::vector<const NavigationSystem*>& systems, std::size_t objects,
                               std::int64_t count, std::uint64_t seed);
 
@@ -54,7 +55,7 @@ struct ContenderResult {
   std::string system;
   std::string knows;
   TrialsSummary summary;
-  std::int64_t unplanned = 0;  ///< drawn pairs this system alone could not plan
+  std::int64_t unplanned = 0;  ///< drawn pairs it could not plan, of those the systems before it could
   double mean_path_ratio =
       0;  ///< arm travel / the straight line between the tool's ends, journeys that reached the goal
   double median_path_ratio = 0;  ///< the same, median
