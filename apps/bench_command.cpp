@@ -25,7 +25,7 @@ namespace neopipe::apps {
 namespace {
 
 // Keys in the order written: the metadata first, then the records, each record's keys as documented.
-using json = nlohmann::ordered_json;
+using BenchJson = nlohmann::ordered_json;
 
 const std::vector<cv::Size> kDefaultSizes{{256, 256}, {640, 480}, {1920, 1080}};
 const std::vector<cv::Size> kSweepSizes{{160, 120}, {320, 240}, {640, 480}, {1280, 720}, {1920, 1080}, {3840, 2160}};
@@ -139,8 +139,8 @@ std::string mib(const std::optional<double>& v) {
   return v ? fmt::format("{:.1f}", *v) : std::string("-");
 }
 
-json nullable(const std::optional<double>& v) {
-  return v ? json(*v) : json(nullptr);
+BenchJson nullable(const std::optional<double>& v) {
+  return v ? BenchJson(*v) : BenchJson(nullptr);
 }
 
 // The measurements of one point at one thread count, by implementation.
@@ -194,10 +194,10 @@ void print_scaling(const std::vector<Row>& rows) {
   }
 }
 
-json record_json(const bench::BenchRecord& r, const Plan& plan, const Point& p) {
+BenchJson record_json(const bench::BenchRecord& r, const Plan& plan, const Point& p) {
   return {{"case", r.case_name},
           {"impl", r.impl},
-          {"sweep", plan.sweep.empty() ? json(nullptr) : json(plan.sweep)},
+          {"sweep", plan.sweep.empty() ? BenchJson(nullptr) : BenchJson(plan.sweep)},
           {"width", r.width},
           {"height", r.height},
           {"blobs", p.blobs_found},
@@ -208,14 +208,14 @@ json record_json(const bench::BenchRecord& r, const Plan& plan, const Point& p) 
           {"rss_growth_mib", nullable(r.rss_growth_mib)}};
 }
 
-json video_json(const bench::VideoRecord& r, const bench::VideoInfo& v) {
+BenchJson video_json(const bench::VideoRecord& r, const bench::VideoInfo& v) {
   const double pixels = v.size.area();
   return {{"case", "video"},
           {"impl", r.impl},
           {"file", v.path},
           {"width", v.size.width},
           {"height", v.size.height},
-          {"frames", v.frames ? json(*v.frames) : json(nullptr)},
+          {"frames", v.frames ? BenchJson(*v.frames) : BenchJson(nullptr)},
           {"threads", r.threads},
           {"fps", r.fps},
           {"mpix_s", r.fps * pixels / 1e6},
@@ -299,7 +299,7 @@ int bench_command(const BenchArgs& a) {
 
   const auto steps =
       static_cast<std::int64_t>(plan.points.size() * plan.threads.size() + (video ? plan.threads.size() : 0));
-  json records = json::array();
+  BenchJson records = BenchJson::array();
   std::vector<Row> rows;
   rows.reserve(plan.points.size() * plan.threads.size());
   if (!a.json) {
@@ -383,16 +383,16 @@ int bench_command(const BenchArgs& a) {
   if (a.json) {
     // Built before the object, not inside its initializer list, where GCC 12 warns of a
     // maybe-uninitialized optional (a false positive of its inlining).
-    const json peak_json = nullable(peak_mib);
+    const BenchJson peak_json = nullable(peak_mib);
     std::vector<std::string> notes = plan.notes;
     notes.insert(notes.end(), video_notes.begin(), video_notes.end());
-    const json out{{"opencv_version", CV_VERSION},
-                   {"hardware_threads", all},
-                   {"repeats", o.repeats},
-                   {"min_time_s", o.min_seconds},
-                   {"peak_rss_mib", peak_json},
-                   {"notes", notes},
-                   {"records", records}};
+    const BenchJson out{{"opencv_version", CV_VERSION},
+                        {"hardware_threads", all},
+                        {"repeats", o.repeats},
+                        {"min_time_s", o.min_seconds},
+                        {"peak_rss_mib", peak_json},
+                        {"notes", notes},
+                        {"records", records}};
     std::cout << out.dump(2) << '\n';
   } else {
     fmt::print("\npeak resident memory of this process: {} MiB\n", mib(peak_mib));

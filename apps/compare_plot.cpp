@@ -60,7 +60,15 @@ void write_compare_plot(const rig::Comparison& c, const std::string& path) {
   const Panel rate{{140, 50, 470, rows * kRow}, rate_lo, 1.0};
   const Panel ratio{{700, 50, 250, rows * kRow}, 1.0, std::ceil(longest * 2) / 2};
   axis(image, rate, rate_lo > 0.8 ? 0.05 : 0.1, "goal reached, 95% interval", "{:.2f}");
-  axis(image, ratio, 0.5, "median path / straight line", "{:.1f}");
+  // Ticks at 0.5, 1, 2, 5, ... so that at most six fit.
+  double ratio_step = 0.5;
+  for (const double step : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0}) {
+    ratio_step = step;
+    if ((ratio.hi - ratio.lo) / step <= 6) break;
+  }
+  Panel ratio_panel = ratio;
+  ratio_panel.hi = ratio.lo + std::ceil((ratio.hi - ratio.lo) / ratio_step) * ratio_step;
+  axis(image, ratio_panel, ratio_step, "median path / straight line", "{:.1f}");
   for (int i = 0; i < static_cast<int>(c.results.size()); ++i) {
     const rig::ContenderResult& r = c.results[static_cast<std::size_t>(i)];
     const std::int64_t n = std::max<std::int64_t>(r.summary.run(), 1);
@@ -74,8 +82,9 @@ void write_compare_plot(const rig::Comparison& c, const std::string& path) {
     cv::line(image, {rate.x(ci.high), y - 7}, {rate.x(ci.high), y + 7}, kChartInk, 2);
     compare_text(image, fmt::format("{:.1f}%", 100 * rate_v), {rate.x(rate.lo) + 6, y + 5});
     if (r.median_path_ratio > 0) {
-      cv::rectangle(image, {ratio.x(ratio.lo), y - 12}, {ratio.x(r.median_path_ratio), y + 12}, kPathBar, cv::FILLED);
-      compare_text(image, fmt::format("{:.2f}", r.median_path_ratio), {ratio.x(ratio.lo) + 6, y + 5});
+      cv::rectangle(image, {ratio_panel.x(ratio.lo), y - 12}, {ratio_panel.x(r.median_path_ratio), y + 12}, kPathBar,
+                    cv::FILLED);
+      compare_text(image, fmt::format("{:.2f}", r.median_path_ratio), {ratio_panel.x(ratio.lo) + 6, y + 5});
     }
   }
   compare_text(image, fmt::format("{} journeys per system, the same pairs and arm errors", c.pairs.size()),

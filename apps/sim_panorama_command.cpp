@@ -19,7 +19,7 @@
 namespace neopipe::apps {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kPanoramaDegree = std::numbers::pi / 180;
 
 sim::Pose2 parse_at(const std::string& text) {
   const UsageError bad{"--at '" + text + "': expected X,Y or X,Y,HEADING (mm, mm, degrees)"};
@@ -38,7 +38,7 @@ sim::Pose2 parse_at(const std::string& text) {
     v.push_back(x);
   }
   if (v.size() != 2 && v.size() != 3) throw bad;
-  return {v[0], v[1], v.size() == 3 ? v[2] * kDegree : 0.0};
+  return {v[0], v[1], v.size() == 3 ? v[2] * kPanoramaDegree : 0.0};
 }
 
 // Each identity its own hue (golden-ratio steps, so neighbours in id differ), full value on black.
@@ -118,7 +118,7 @@ int sim_panorama_command(const SimPanoramaArgs& a) {
   }
   if (a.json) {
     nlohmann::ordered_json j;
-    j["pose"] = {{"x", tool.x}, {"y", tool.y}, {"heading_deg", tool.theta / kDegree}};
+    j["pose"] = {{"x", tool.x}, {"y", tool.y}, {"heading_deg", tool.theta / kPanoramaDegree}};
     j["readings"] = nlohmann::ordered_json::array();
     for (const auto& r : readings) {
       j["readings"].push_back({{"id", r.id},

@@ -26,7 +26,7 @@
 namespace neopipe::apps {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kRenderDegree = std::numbers::pi / 180;
 
 cv::Size parse_resolution(const std::string& text, const std::string& option = "--resolution", int least = 16) {
   int w = 0;
@@ -61,7 +61,7 @@ std::vector<double> numbers(const std::string& text) {
 sim::Pose2 parse_pose(const std::string& text, const std::string& where) {
   const auto v = numbers(text);
   if (v.size() != 3) throw UsageError{where + " '" + text + "': expected x,y,theta (mm, mm, degrees)"};
-  return {v[0], v[1], v[2] * kDegree};
+  return {v[0], v[1], v[2] * kRenderDegree};
 }
 
 void check_camera_name(const std::string& camera) {
@@ -92,7 +92,7 @@ std::vector<sim::Pose2> read_path(const std::string& path, const sim::World& wor
     const auto v = numbers(line);
     if (v.size() != 3)
       throw std::runtime_error(fmt::format("{}:{}: expected three numbers x,y,theta, not '{}'", path, n, line));
-    out.push_back({v[0], v[1], v[2] * kDegree});
+    out.push_back({v[0], v[1], v[2] * kRenderDegree});
     check_on_workspace(world, out.back(), fmt::format("{}:{}: pose", path, n));
   }
   if (out.empty()) throw std::runtime_error(path + ": no poses after the header");
