@@ -78,7 +78,8 @@ std::string array_spec(const std::vector<std::int64_t>& shards, std::int64_t max
   for (std::size_t i = 0; i < s.size();) {
     std::size_t j = i;
     while (j + 1 < s.size() && s[j + 1] == s[j] + 1) ++j;
-    out += (out.empty() ? "" : ",") + (j == i ? std::to_string(s[i]) : fmt::format("{}-{}", s[i], s[j]));
+    if (!out.empty()) out += ',';
+    out += j == i ? fmt::format("{}", s[i]) : fmt::format("{}-{}", s[i], s[j]);
     i = j + 1;
   }
   if (max_parallel > 0) out += fmt::format("%{}", max_parallel);
