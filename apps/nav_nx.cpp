@@ -9,6 +9,7 @@
 
 #include "apps/cli_support.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/nav_journey_support.hpp"
 #include "apps/nx_plot.hpp"
 #include "apps/outcome_table.hpp"
 #include "apps/progress.hpp"
@@ -29,49 +30,18 @@ double nx_range_error(const NavArgs& a) {
 namespace nx = nav::nx;
 using nlohmann::json;
 
-rig::JourneySettings nx_journey_settings(const NavArgs& a) {
-  rig::JourneySettings s;
-  s.errors.sigma_move = a.sigma_move;
-  s.errors.sigma_rot = a.sigma_rot;
-  s.seed = a.seed;
-  return s;
-}
-
 int nx_one_journey(const NavArgs& a, const sim::World& world, const rig::NxSystem& system) {
-  const auto check_id = [&](const char* option, std::int64_t id) {
-    if (id < 0 || id >= std::ssize(world.objects)) {
-      throw UsageError{
-          fmt::format("{} {}: the world's objects are 0 to {}", option, id, std::ssize(world.objects) - 1)};
-    }
-    return static_cast<std::uint32_t>(id);
-  };
-  const std::uint32_t from = check_id("--from", *a.from);
-  const std::uint32_t to = check_id("--to", *a.to);
-  if (from == to) throw UsageError{fmt::format("--from {} --to {}: the start is the goal", from, to)};
-  std::unique_ptr<rig::Plan> plan;
-  try {
-    plan = system.plan(from, to);
-  } catch (const rig::UnreachableGoal& e) {
-    print_error("nav", e.what());
-    return kExitUnreachable;
-  }
-  rig::JourneySettings journey = nx_journey_settings(a);
-  if (a.as_trial) {
-    if (*a.as_trial < 0) throw UsageError{fmt::format("--as-trial {}: trials are numbered from 0", *a.as_trial)};
-    journey.seed = rig::trial_seed(journey.seed, *a.as_trial);
-  }
+  PlannedJourney planned = plan_one_journey(a, world, system);
+  if (!planned.plan) return kExitUnreachable;
+  const std::unique_ptr<rig::Plan>& plan = planned.plan;
+  const rig::JourneySettings& journey = planned.settings;
+  const std::uint32_t from = plan->start;
+  const std::uint32_t to = plan->goal;
   const rig::JourneyResult r = rig::run_journey(system, *plan, world, journey);
   const auto* report = std::any_cast<nx::NxJourney>(&r.travel.details);
   const rig::NxPlan& p = rig::nx_plan(*plan);
   if (!a.plot.empty()) write_nx_plot(a.plot, world, system.exploration(), nullptr, r.arm.track);
-  json held = json::array();
-  for (const rig::HeldLandmark& h : r.held) {
-    held.push_back({{"entry", h.entry},
-                    {"intended", h.intended},
-                    {"held", h.actual},
-                    {"offset", h.offset},
-                    {"correct", h.correct}});
-  }
+  const json held = held_landmarks_json(r);
   const std::vector<std::size_t> visited = report != nullptr ? report->places : std::vector<std::size_t>{};
   const char* ending = report != nullptr ? nx::journey_ending_name(report->ending) : "none";
   if (a.json) {
@@ -113,7 +83,7 @@ int nx_trials(const NavArgs& a, const sim::World& world, const rig::NxSystem& sy
   const std::vector<std::unique_ptr<rig::Plan>> plans =
       rig::draw_plans(system, world.objects.size(), *a.trials, a.seed);
   ProgressBar bar("nav", std::ssize(plans), true);
-  const rig::TrialsSummary t = rig::run_trials(system, plans, world, nx_journey_settings(a), a.threads,
+  const rig::TrialsSummary t = rig::run_trials(system, plans, world, arm_journey_settings(a), a.threads,
                                                [&](std::int64_t done) { bar.update(done); });
   bar.clear();
   json j = rig::nx_trials_json(system, plans, t);

@@ -13,6 +13,7 @@
 
 #include "apps/cli_support.hpp"
 #include "apps/nav_command.hpp"
+#include "apps/nav_journey_support.hpp"
 #include "apps/outcome_table.hpp"
 #include "apps/progress.hpp"
 #include "nav/qrm/rng.hpp"
@@ -28,14 +29,6 @@ namespace {
 
 namespace q = nav::qrm;
 using nlohmann::json;
-
-rig::JourneySettings journey_settings(const NavArgs& a) {
-  rig::JourneySettings s;
-  s.errors.sigma_move = a.sigma_move;
-  s.errors.sigma_rot = a.sigma_rot;
-  s.seed = a.seed;
-  return s;
-}
 
 // The world, the estimated RNG of the built map (grey), the planned route (blue), the tool's true
 // track (red) and the landmarks the navigator held (green rings): a PNG.
@@ -76,39 +69,16 @@ void write_qrm_plot(const std::string& path, const sim::World& world, const rig:
 }
 
 int qrm_one_journey(const NavArgs& a, const sim::World& world, const rig::QrmSystem& system) {
-  const auto check_id = [&](const char* option, std::int64_t id) {
-    if (id < 0 || id >= std::ssize(world.objects)) {
-      throw UsageError{
-          fmt::format("{} {}: the world's objects are 0 to {}", option, id, std::ssize(world.objects) - 1)};
-    }
-    return static_cast<std::uint32_t>(id);
-  };
-  const std::uint32_t from = check_id("--from", *a.from);
-  const std::uint32_t to = check_id("--to", *a.to);
-  if (from == to) throw UsageError{fmt::format("--from {} --to {}: the start is the goal", from, to)};
-  std::unique_ptr<rig::Plan> plan;
-  try {
-    plan = system.plan(from, to);
-  } catch (const rig::UnreachableGoal& e) {
-    print_error("nav", e.what());
-    return kExitUnreachable;
-  }
-  rig::JourneySettings journey = journey_settings(a);
-  if (a.as_trial) {
-    if (*a.as_trial < 0) throw UsageError{fmt::format("--as-trial {}: trials are numbered from 0", *a.as_trial)};
-    journey.seed = rig::trial_seed(journey.seed, *a.as_trial);
-  }
+  PlannedJourney planned = plan_one_journey(a, world, system);
+  if (!planned.plan) return kExitUnreachable;
+  const std::unique_ptr<rig::Plan>& plan = planned.plan;
+  const rig::JourneySettings& journey = planned.settings;
+  const std::uint32_t from = plan->start;
+  const std::uint32_t to = plan->goal;
   const rig::JourneyResult r = rig::run_journey(system, *plan, world, journey);
   const q::NavigationReport& report = *rig::qrm_report(r.travel);
   if (!a.plot.empty()) write_qrm_plot(a.plot, world, system, *plan, r);
-  json held = json::array();
-  for (const rig::HeldLandmark& h : r.held) {
-    held.push_back({{"entry", h.entry},
-                    {"intended", h.intended},
-                    {"held", h.actual},
-                    {"offset", h.offset},
-                    {"correct", h.correct}});
-  }
+  const json held = held_landmarks_json(r);
   if (a.json) {
     std::cout << json{{"system", "qrm"},
                       {"from", from},
@@ -183,7 +153,7 @@ int qrm_trials(const NavArgs& a, const sim::World& world, const rig::QrmSystem& 
       a.pairs.empty() ? rig::draw_plans(system, world.objects.size(), *a.trials, a.seed)
                       : plans_for_pairs(a.pairs, system, world.objects.size());
   ProgressBar bar("nav", std::ssize(plans), true);
-  const rig::TrialsSummary t = rig::run_trials(system, plans, world, journey_settings(a), a.threads,
+  const rig::TrialsSummary t = rig::run_trials(system, plans, world, arm_journey_settings(a), a.threads,
                                                [&](std::int64_t done) { bar.update(done); });
   bar.clear();
   json j = rig::qrm_trials_json(system, plans, t);

@@ -17,6 +17,7 @@
 #include "rig/qrm_imaging.hpp"
 #include "rig/reports.hpp"
 #include "rig/seeds.hpp"
+#include "rig/start_placement.hpp"
 #include "sim/panorama.hpp"
 
 namespace neopipe::rig {
@@ -73,18 +74,6 @@ class EntryRelay final : public q::NavigationObserver {
   Witness& witness_;
   bool first_ = true;
 };
-
-// The nearest marble surface from `p`, mm, and whether `p` is nearer `id` than any other marble
-// by `margin`.
-bool in_cell_and_clear(const sim::World& world, std::uint32_t id, const Vector2d& p, double clear, double margin) {
-  const double own = (p - world.objects[id]).norm();
-  for (std::size_t j = 0; j < world.objects.size(); ++j) {
-    const double d = (p - world.objects[j]).norm();
-    if (d < clear) return false;
-    if (j != id && d < own + margin) return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -144,20 +133,9 @@ std::unique_ptr<Plan> QrmSystem::plan(std::uint32_t from, std::uint32_t to) cons
   p->landmarks = {from, to};
   // The harness places the tool in the start's Voronoi cell, clear of every marble: the nearest
   // such point on rings around it, first direction first (deterministic).
-  const double radius = world_.marble_diameter / 2;
-  const double clear = radius + sim::kMinClearanceMm + kPlacementMarginMm;
-  bool placed = false;
-  for (double r = clear; r <= clear + 40 && !placed; r += 5) {
-    for (int deg = 0; deg < 360 && !placed; deg += 15) {
-      const double a = deg * std::numbers::pi / 180;
-      const Vector2d offset = r * Vector2d(std::cos(a), std::sin(a));
-      if (in_cell_and_clear(world_, from, world_.objects[from] + offset, clear, 2 * kPlacementMarginMm)) {
-        p->start_offset = offset;
-        placed = true;
-      }
-    }
-  }
-  if (!placed) throw UnreachableGoal(fmt::format("no start clear of the marbles in object {}'s cell", from));
+  const std::optional<Vector2d> offset = clear_start_offset(world_, from, kPlacementMarginMm);
+  if (!offset) throw UnreachableGoal(fmt::format("no start clear of the marbles in object {}'s cell", from));
+  p->start_offset = *offset;
   // QRM has no model of how often a journey arrives: c_ij measures how uncertain an edge's RNG
   // membership is, not a probability of reaching. So no forecast is made (1), and no distance:
   // the map holds no metric.

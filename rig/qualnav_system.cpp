@@ -14,6 +14,7 @@
 #include "nav/qualnav/navigator/view_source.hpp"
 #include "rig/reports.hpp"
 #include "rig/seeds.hpp"
+#include "rig/start_placement.hpp"
 #include "sim/panorama.hpp"
 #include "sim/random.hpp"
 
@@ -56,17 +57,6 @@ class GoalRelay final : public qn::GoalObserver {
   Witness& witness_;
 };
 
-// Whether `p` keeps `clear` from every centre and lies nearer `id` than any other by `margin`.
-bool qualnav_start_fits(const sim::World& world, std::uint32_t id, const Vector2d& p, double clear, double margin) {
-  const double own = (p - world.objects[id]).norm();
-  for (std::size_t j = 0; j < world.objects.size(); ++j) {
-    const double d = (p - world.objects[j]).norm();
-    if (d < clear) return false;
-    if (j != id && d < own + margin) return false;
-  }
-  return true;
-}
-
 }  // namespace
 
 const QualnavPlan& qualnav_plan(const Plan& plan) {
@@ -106,20 +96,9 @@ std::unique_ptr<Plan> QualnavSystem::plan(std::uint32_t from, std::uint32_t to) 
   p->goal = to;
   p->landmarks = {from, to};
   // The start: the nearest point clear of every marble in the start's cell, first direction first.
-  const double radius = world_.marble_diameter / 2;
-  const double clear = radius + sim::kMinClearanceMm + kQualnavStartMarginMm;
-  bool placed = false;
-  for (double r = clear; r <= clear + 40 && !placed; r += 5) {
-    for (int deg = 0; deg < 360 && !placed; deg += 15) {
-      const double a = deg * std::numbers::pi / 180;
-      const Vector2d offset = r * Vector2d(std::cos(a), std::sin(a));
-      if (qualnav_start_fits(world_, from, world_.objects[from] + offset, clear, 2 * kQualnavStartMarginMm)) {
-        p->start_offset = offset;
-        placed = true;
-      }
-    }
-  }
-  if (!placed) throw UnreachableGoal(fmt::format("no start clear of the marbles in object {}'s cell", from));
+  const std::optional<Vector2d> offset = clear_start_offset(world_, from, kQualnavStartMarginMm);
+  if (!offset) throw UnreachableGoal(fmt::format("no start clear of the marbles in object {}'s cell", from));
+  p->start_offset = *offset;
   const Vector2d start = world_.objects[from] + p->start_offset;
   auto route = settings_.detour ? teach_detour(world_, start, to, settings_.route_clearance_mm, settings_.route_end_mm,
                                                (from + to) % 2 == 0 ? 1.0 : -1.0)
