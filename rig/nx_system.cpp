@@ -258,7 +258,6 @@ json nx_exploration_json(const NxExploration& e) {
 }
 
 json nx_trials_json(const NxSystem& system, const std::vector<std::unique_ptr<Plan>>& plans, const TrialsSummary& t) {
-  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   std::array<std::int64_t, nx::kJourneyEndings> endings{};
   std::int64_t legs = 0;
   std::int64_t relocalisations = 0;
@@ -289,22 +288,13 @@ json nx_trials_json(const NxSystem& system, const std::vector<std::unique_ptr<Pl
   for (std::size_t e = 0; e < endings.size(); ++e) {
     own[nx::journey_ending_name(static_cast<nx::JourneyEnding>(e))] = endings[e];
   }
-  json report = {{"system", system.name()},
-                 {"trials", std::ssize(t.trials)},
-                 {"run", t.run()},
-                 {"refused", t.refused},
-                 {"frames", t.frames},
-                 {"seconds", t.seconds},
-                 {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
-                 {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
-                 {"nx",
-                  {{"endings", own},
-                   {"legs", legs},
-                   {"relocalisations", relocalisations},
-                   {"range_error", system.settings().range_error},
-                   {"exploration", nx_exploration_json(system.exploration())}}},
-                 {"journeys", journeys}};
-  report.update(outcome_tables_json(t));
+  json report = trials_report_json(system, t);
+  report["nx"] = {{"endings", own},
+                  {"legs", legs},
+                  {"relocalisations", relocalisations},
+                  {"range_error", system.settings().range_error},
+                  {"exploration", nx_exploration_json(system.exploration())}};
+  report["journeys"] = std::move(journeys);
   return report;
 }
 

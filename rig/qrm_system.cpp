@@ -170,7 +170,6 @@ const q::NavigationReport* qrm_report(const Travel& travel) {
 }
 
 json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<Plan>>& plans, const TrialsSummary& t) {
-  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   std::array<std::int64_t, q::kNavigationEndings> endings{};
   std::int64_t steps = 0;
   std::int64_t detours = 0;
@@ -210,16 +209,8 @@ json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<
     own[std::string(q::navigation_ending_name(static_cast<q::NavigationEnding>(e)))] = endings[e];
   }
   const QrmSettings& s = system.settings();
-  json report = {{"system", system.name()},
-                 {"trials", std::ssize(t.trials)},
-                 {"run", t.run()},
-                 {"refused", t.refused},
-                 {"frames", t.frames},
-                 {"seconds", t.seconds},
-                 {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
-                 {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
-                 {"qrm",
-                  {{"endings", own},
+  json report = trials_report_json(system, t);
+  report["qrm"] = {{"endings", own},
                    {"steps", steps},
                    {"detours", detours},
                    {"reroutes", reroutes},
@@ -230,9 +221,8 @@ json qrm_trials_json(const QrmSystem& system, const std::vector<std::unique_ptr<
                    {"step_mm", s.navigator.step_mm},
                    {"fuse_every", s.navigator.fuse_every},
                    {"max_steps", s.navigator.max_steps},
-                   {"map_landmarks", system.map().size()}}},
-                 {"journeys", journeys}};
-  report.update(outcome_tables_json(t));
+                   {"map_landmarks", system.map().size()}};
+  report["journeys"] = std::move(journeys);
   return report;
 }
 

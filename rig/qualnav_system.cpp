@@ -152,7 +152,6 @@ const qn::NavigationReport* qualnav_report(const Travel& travel) {
 
 json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::unique_ptr<Plan>>& plans,
                          const TrialsSummary& t) {
-  const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   std::array<std::int64_t, qn::kNavigationEndings> endings{};
   std::int64_t steps = 0;
   std::int64_t shortcuts = 0;
@@ -220,33 +219,24 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
   }
   const QualnavSettings& s = system.settings();
   const double runs = static_cast<double>(std::max<std::size_t>(t.trials.size(), 1));
-  json report = {{"system", system.name()},
-                 {"trials", std::ssize(t.trials)},
-                 {"run", t.run()},
-                 {"refused", t.refused},
-                 {"frames", t.frames},
-                 {"seconds", t.seconds},
-                 {"mean_arm_travel", t.true_travel / static_cast<double>(n)},
-                 {"mean_commanded_travel", t.commanded_travel / static_cast<double>(n)},
-                 {"qualnav",
-                  {{"endings", own},
-                   {"steps", steps},
-                   {"shortcuts", shortcuts},
-                   {"detours", detours},
-                   {"range_error", s.sensing.range_error},
-                   {"step_mm", s.navigator.step_mm},
-                   {"route_clearance_mm", s.route_clearance_mm},
-                   {"taught_routes", s.detour ? "detour" : "shortest"},
-                   {"mean_taught_route_mm", taught / runs},
-                   {"mean_taught_turning_deg", taught_turning / runs * 180 / std::numbers::pi},
-                   {"mean_path_turning_deg", executed_turning / runs * 180 / std::numbers::pi},
-                   {"arrived", arrived},
-                   {"arrived_taught_route_mm", taught_arrived},
-                   {"arrived_path_mm", executed},
-                   {"arrived_shorter_than_taught", arrived_shorter},
-                   {"arrived_smoother_than_taught", arrived_smoother}}},
-                 {"journeys", journeys}};
-  report.update(outcome_tables_json(t));
+  json report = trials_report_json(system, t);
+  report["qualnav"] = {{"endings", own},
+                       {"steps", steps},
+                       {"shortcuts", shortcuts},
+                       {"detours", detours},
+                       {"range_error", s.sensing.range_error},
+                       {"step_mm", s.navigator.step_mm},
+                       {"route_clearance_mm", s.route_clearance_mm},
+                       {"taught_routes", s.detour ? "detour" : "shortest"},
+                       {"mean_taught_route_mm", taught / runs},
+                       {"mean_taught_turning_deg", taught_turning / runs * 180 / std::numbers::pi},
+                       {"mean_path_turning_deg", executed_turning / runs * 180 / std::numbers::pi},
+                       {"arrived", arrived},
+                       {"arrived_taught_route_mm", taught_arrived},
+                       {"arrived_path_mm", executed},
+                       {"arrived_shorter_than_taught", arrived_shorter},
+                       {"arrived_smoother_than_taught", arrived_smoother}};
+  report["journeys"] = std::move(journeys);
   return report;
 }
 

@@ -305,6 +305,20 @@ json steps_json(const mm::Route& route) {
   return steps;
 }
 
+json trials_report_json(const NavigationSystem& system, const TrialsSummary& t) {
+  const auto n = static_cast<double>(std::max<std::int64_t>(t.run(), 1));
+  json report = {{"system", system.name()},
+                 {"trials", std::ssize(t.trials)},
+                 {"run", t.run()},
+                 {"refused", t.refused},
+                 {"frames", t.frames},
+                 {"seconds", t.seconds},
+                 {"mean_arm_travel", t.true_travel / n},
+                 {"mean_commanded_travel", t.commanded_travel / n}};
+  report.update(outcome_tables_json(t));
+  return report;
+}
+
 json outcome_tables_json(const TrialsSummary& t) {
   // Over the journeys run: a refused plan is not a failure, it is counted apart.
   const std::int64_t n = std::max<std::int64_t>(t.run(), 1);

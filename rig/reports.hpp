@@ -100,6 +100,11 @@ NavSetup nav_setup(const NavRequest& request);
 /// "reached_goal_ci95".
 nlohmann::json outcome_tables_json(const TrialsSummary& t);
 
+/// The keys every system's trials JSON begins with ("system", "trials", "run", "refused", "frames",
+/// "seconds", "mean_arm_travel", "mean_commanded_travel") and its outcome tables; the system adds
+/// its own key and "journeys".
+nlohmann::json trials_report_json(const NavigationSystem& system, const TrialsSummary& t);
+
 nlohmann::json survey_json(const Survey& survey);
 /// "TRAJP 47 -> 75": a step's kind and ends, for grouping failures by kind.
 std::string step_name(const nav::mapmaker::RouteStep& step);
