@@ -157,19 +157,23 @@ void print_header(const Plan& plan) {
     fmt::print("sweep: blob count; dots frames with disks of radius {} at {}\n", kBlobSweepRadius,
                plan.points.empty() ? std::string("?") : size_text(plan.points.front().c.size));
   }
-  fmt::print("{:<6} {:>10} {:>6} {:>7} {:>11} {:>11} {:>11} {:>8} {:>8} {:>9} {:>8} {:>7} {:>7}\n", "case", "size",
-             "blobs", "threads", "neopipe f/s", "opencv f/s", "floor f/s", "np ns/px", "cv ns/px", "vs opencv",
-             "floor/np", "np +MiB", "cv +MiB");
+  fmt::print("{:<6} {:>10} {:>6} {:>7} {:>11} {:>11} {:>11} {:>11} {:>8} {:>8} {:>9} {:>9} {:>8} {:>7} {:>7}\n", "case",
+             "size", "blobs", "threads", "neopipe f/s", "opencv f/s", "halide f/s", "floor f/s", "np ns/px", "cv ns/px",
+             "vs opencv", "vs halide", "floor/np", "np +MiB", "cv +MiB");
 }
 
 void print_row(const Row& r) {
   const auto& np = r.by_impl.at("neopipe");
   const auto& cv = r.by_impl.at("opencv");
   const auto& fl = r.by_impl.at("floor");
-  fmt::print("{:<6} {:>10} {:>6} {:>7} {:>11.1f} {:>11.1f} {:>11.1f} {:>8.2f} {:>8.2f} {:>9} {:>8} {:>7} {:>7}\n",
-             r.point->c.name, size_text(r.point->c.size), r.point->blobs_found, r.threads, np.fps, cv.fps, fl.fps,
-             np.ns_per_pixel, cv.ns_per_pixel, ratio(np.fps, cv.fps), ratio(fl.fps, np.fps), mib(np.rss_growth_mib),
-             mib(cv.rss_growth_mib));
+  const auto hl = r.by_impl.find("halide");
+  const bool has_hl = hl != r.by_impl.end();
+  fmt::print(
+      "{:<6} {:>10} {:>6} {:>7} {:>11.1f} {:>11.1f} {:>11} {:>11.1f} {:>8.2f} {:>8.2f} {:>9} {:>9} {:>8} {:>7} {:>7}\n",
+      r.point->c.name, size_text(r.point->c.size), r.point->blobs_found, r.threads, np.fps, cv.fps,
+      has_hl ? fmt::format("{:.1f}", hl->second.fps) : std::string("-"), fl.fps, np.ns_per_pixel, cv.ns_per_pixel,
+      ratio(np.fps, cv.fps), has_hl ? ratio(np.fps, hl->second.fps) : std::string("-"), ratio(fl.fps, np.fps),
+      mib(np.rss_growth_mib), mib(cv.rss_growth_mib));
 }
 
 // f/s at N threads over f/s at 1 thread, for every point measured at 1 thread and at more.
@@ -237,16 +241,20 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       "  chain  the dots frames through 3x3 smooth -> threshold -> 3x3 opening (erode, dilate) -> blobs; opencv:\n"
       "         cv::GaussianBlur 3x3 -> cv::threshold -> cv::morphologyEx MORPH_OPEN 3x3 -> "
       "connectedComponentsWithStats.\n"
+      "  halide (chain only, when built with Halide 14) the composite a Halide user would write: the four iconic\n"
+      "         stages in Halide (ahead-of-time, strips of 32 rows in parallel, every stage per strip, vectorised),\n"
+      "         then neopipe's own blob stage, the next frame's Halide stages overlapping this frame's blobs.\n"
       "  floor  (in every case) one pass summing every pixel: the cost of looking at each pixel once.\n"
       "Before timing, every case and size is cross-checked: neopipe and OpenCV must find the same blobs (count\n"
-      "and total area), else the bench stops with an error.\n"
+      "and total area), and the Halide composite exactly neopipe's blob table, else the bench stops with an error.\n"
       "Sweeps (case dots unless --case says otherwise):\n"
       "  --sweep size   frame sizes 160x120 .. 3840x2160 (or --size's), about 100 disks: how cost grows with pixels\n"
       "  --sweep blobs  10 .. 10000 disks of radius 3 at one size (--size, default 1920x1080): how cost grows with\n"
       "                 blobs; counts that no longer fit in the frame are left out\n"
       "Columns: blobs = blobs in the case's first frame (both found the same); f/s = frames per second, the\n"
       "median of --repeats runs; ns/px = nanoseconds per pixel (np neopipe, cv OpenCV); vs opencv = neopipe f/s\n"
-      "/ opencv f/s; floor/np = floor f/s / neopipe f/s; np +MiB, cv +MiB = how far the resident memory rose\n"
+      "/ opencv f/s; vs halide = neopipe f/s / halide f/s; floor/np = floor f/s / neopipe f/s; np +MiB, cv +MiB = how "
+      "far the resident memory rose\n"
       "while neopipe / OpenCV ran (their buffers, frames in flight, thread stacks; - if the system cannot tell).\n"
       "With several thread counts including 1, a thread scaling table follows: f/s at N threads / f/s at 1.\n"
       "The footer gives the process's peak resident memory (VmHWM).\n"

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <opencv2/core.hpp>
 
+#include "bench/halide_peer.hpp"
 #include "bench/memory.hpp"
 #include "bench/peers.hpp"
 #include "bench/synthetic.hpp"
@@ -93,6 +94,31 @@ double time_neopipe(const std::string& name, const Frames& f, int threads, doubl
   return static_cast<double>(i - start) / seconds_since(t0);
 }
 
+// The Halide composite streamed as the executor is: frames submitted one after another.
+double time_halide(const Frames& f, int threads, double min_seconds) {
+  HalideChain chain(threads);
+  const auto n_frames = static_cast<std::int64_t>(f.images.size());
+  std::int64_t i = 0;
+  for (; i < 3; ++i) chain.submit(f.images[static_cast<size_t>(i % n_frames)], f.threshold);
+  chain.finish();
+  const std::int64_t start = i;
+  const auto t0 = Clock::now();
+  do {
+    for (int k = 0; k < 8; ++k, ++i) chain.submit(f.images[static_cast<size_t>(i % n_frames)], f.threshold);
+  } while (seconds_since(t0) < min_seconds);
+  chain.finish();
+  return static_cast<double>(i - start) / seconds_since(t0);
+}
+
+bool same_blobs(const pipeline::BlobList& a, const pipeline::BlobList& b) {
+  const auto same = [](const kernels::Blob& p, const kernels::Blob& q) {
+    return p.area == q.area && p.x0 == q.x0 && p.y0 == q.y0 && p.width == q.width && p.height == q.height &&
+           p.cx == q.cx && p.cy == q.cy && p.wcx == q.wcx && p.wcy == q.wcy && p.mu20 == q.mu20 && p.mu11 == q.mu11 &&
+           p.mu02 == q.mu02;
+  };
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), same);
+}
+
 // Runs `timed` (which returns frames/s); on the first repeat also notes how far the resident set
 // grew while it ran.
 template <class F>
@@ -105,6 +131,10 @@ double timed_with_memory(F&& timed, bool first, std::optional<double>& growth_mi
 }
 
 }  // namespace
+
+bool has_halide_peer(const std::string& case_name) {
+  return case_name == "chain" && halide_available();
+}
 
 bool uses_dots_frames(const std::string& case_name) {
   return case_name == "dots" || case_name == "chain";
@@ -136,6 +166,8 @@ std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& 
   std::vector<double> np;
   std::vector<double> cvv;
   std::vector<double> fl;
+  std::vector<double> hl;
+  std::optional<double> hl_mem;
   std::optional<double> np_mem;
   std::optional<double> cv_mem;
   std::optional<double> fl_mem;
@@ -151,12 +183,16 @@ std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& 
         [&] { return time_loop([&](int i) { opencv(frame(i), f.threshold); }, o.min_seconds); }, first, cv_mem));
     fl.push_back(
         timed_with_memory([&] { return time_loop([&](int i) { floor(frame(i)); }, o.min_seconds); }, first, fl_mem));
+    if (has_halide_peer(c.name)) {
+      hl.push_back(timed_with_memory([&] { return time_halide(f, c.threads, o.min_seconds); }, first, hl_mem));
+    }
   }
   cv::setNumThreads(saved_cv_threads);
   const double pixels = c.size.area();
   std::vector<BenchRecord> out;
-  for (const auto& [impl, v, mem] :
-       {std::tuple{"neopipe", &np, np_mem}, std::tuple{"opencv", &cvv, cv_mem}, std::tuple{"floor", &fl, fl_mem}}) {
+  for (const auto& [impl, v, mem] : {std::tuple{"neopipe", &np, np_mem}, std::tuple{"opencv", &cvv, cv_mem},
+                                     std::tuple{"floor", &fl, fl_mem}, std::tuple{"halide", &hl, hl_mem}}) {
+    if (v->empty()) continue;
     const double fps = median(*v);
     out.push_back(
         {c.name, impl, c.size.width, c.size.height, c.threads, fps, fps * pixels / 1e6, 1e9 / (fps * pixels), mem});
@@ -179,6 +215,13 @@ CrossCheck cross_check(const BenchCase& c) {
     check.mismatch = c.name + " " + std::to_string(c.size.width) + "x" + std::to_string(c.size.height) +
                      ": neopipe found " + std::to_string(check.blobs) + " blobs (" + std::to_string(our_area) +
                      " pixels), OpenCV " + std::to_string(theirs) + " (" + std::to_string(their_area) + " pixels)";
+  }
+  if (check.mismatch.empty() && has_halide_peer(c.name)) {
+    HalideChain halide(1);
+    if (!same_blobs(ours, halide(f.images.front(), f.threshold))) {
+      check.mismatch = c.name + " " + std::to_string(c.size.width) + "x" + std::to_string(c.size.height) +
+                       ": the Halide composite's blob table differs from neopipe's";
+    }
   }
   return check;
 }

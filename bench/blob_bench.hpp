@@ -15,6 +15,10 @@ namespace neopipe::bench {
 /// The cases, in the order `neopipe bench` runs them by default.
 inline const std::vector<std::string> case_names{"dots", "dense", "chain"};
 
+/// True for the cases measured against the Halide composite too (the chain, when this build has
+/// Halide): the others have no iconic stage before their blob stage (the threshold is folded into it).
+bool has_halide_peer(const std::string& case_name);
+
 /// True for the cases whose frames are make_dots_frame's disks (so a blob count and radius apply).
 bool uses_dots_frames(const std::string& case_name);
 
@@ -28,7 +32,7 @@ struct BenchCase {
 
 struct BenchRecord {
   std::string case_name;
-  std::string impl;  ///< "neopipe", "opencv" or "floor"
+  std::string impl;  ///< "neopipe", "opencv", "floor" or "halide" (the chain case's composite)
   int width = 0;
   int height = 0;
   int threads = 0;
@@ -47,7 +51,8 @@ struct BenchOptions {
   int distinct_frames = 8;   ///< different generated frames cycled through
 };
 
-/// Measures one case with all three implementations, interleaved.
+/// Measures one case with every implementation it has (neopipe, opencv, floor; halide for the
+/// chain), interleaved.
 std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& o);
 
 struct CrossCheck {
@@ -56,7 +61,8 @@ struct CrossCheck {
 };
 
 /// Checks that neopipe and OpenCV find the same number of blobs, with the same total area, on the
-/// case's first frame (a benchmark of two programs that disagree measures nothing).
+/// case's first frame, and that the Halide composite (where the case has one) finds exactly
+/// neopipe's blob table (a benchmark of two programs that disagree measures nothing).
 CrossCheck cross_check(const BenchCase& c);
 
 /// The chain case's graph, on gray frames: conv3x3 smooth ([1 2 1; 2 4 2; 1 2 1] / 16) -> threshold

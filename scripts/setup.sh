@@ -25,6 +25,7 @@ elif [ "${1:-}" != "--demo" ]; then
   packages+=(
     libgtest-dev libgmock-dev
     libbenchmark-dev       # kernel micro-benchmarks
+    libhalide14-0-dev      # the Halide peer of `neopipe bench` (bench/halide/, AOT-compiled at build time)
     ffmpeg                 # the tests make sample videos with it
     opencv-doc             # sample data the tests check against (vtest.avi, the left01..14 chessboard photos)
     dpkg-dev               # dpkg-source: scripts/sanitizers/onetbb-tsan.sh unpacks Debian's oneTBB source

@@ -1,15 +1,11 @@
 // Iconic-to-symbolic nodes: whole frames in, tables out.
 
-#include <oneapi/tbb/parallel_for.h>
-#include <oneapi/tbb/task_arena.h>
-
-#include <algorithm>
-
 #include "kernels/blobs.hpp"
 #include "kernels/histogram.hpp"
 #include "kernels/threshold.hpp"
 #include "kernels/value_blobs.hpp"
 #include "pipeline/nodes/nodes.hpp"
+#include "pipeline/striped_blobs.hpp"
 
 namespace neopipe::pipeline::nodes {
 namespace {
@@ -28,8 +24,6 @@ class HistogramNode final : public Node {
 };
 
 class BlobsNode final : public Node {
-  static constexpr int kMinStripeRows = 512;
-
  public:
   BlobsNode(kernels::BlobParams params, bool otsu)
       : Node({{"in", PortType::gray8}, {"weights", PortType::gray8, true}}, {{"out", PortType::blobs}},
@@ -41,20 +35,7 @@ class BlobsNode final : public Node {
     kernels::BlobParams p = params_;
     if (otsu_) p.threshold = kernels::otsu_threshold(kernels::histogram(in));
     const cv::Mat weights = io.connected(1) ? io.image(1) : cv::Mat();
-    // A tall frame is labelled in horizontal stripes on the executor's threads and the stripes are
-    // joined at their borders: the same table as one pass (merge_stripes is exact), sooner. Short
-    // frames are one stripe: there, other frames in flight keep the threads busy at less cost.
-    const int stripes = std::min(tbb::this_task_arena::max_concurrency(), in.rows / kMinStripeRows);
-    if (stripes < 2) {
-      io.out<BlobList>(0) = kernels::extract_blobs(in, p, weights);
-      return;
-    }
-    std::vector<kernels::BlobStripe> parts(static_cast<size_t>(stripes));
-    tbb::parallel_for(0, stripes, [&](int i) {
-      const cv::Range rows(in.rows * i / stripes, in.rows * (i + 1) / stripes);
-      parts[static_cast<size_t>(i)] = kernels::label_stripe(in, p, weights, rows);
-    });
-    io.out<BlobList>(0) = kernels::merge_stripes(std::move(parts), p);
+    io.out<BlobList>(0) = striped_blobs(in, p, weights);
   }
 
  private:
