@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <opencv2/core/utility.hpp>
 #include <optional>
@@ -19,6 +20,8 @@
 #include "bench/blob_bench.hpp"
 #include "bench/memory.hpp"
 #include "bench/video_bench.hpp"
+#include "pipeline/compiled_graph.hpp"
+#include "pipeline/graph_spec.hpp"
 #include "pipeline/kernel_registry.hpp"
 
 namespace neopipe::apps {
@@ -89,7 +92,16 @@ Plan make_plan(const BenchArgs& a, int all) {
   std::vector<cv::Size> sizes;
   for (const auto& s : a.sizes) sizes.push_back(parse_frame_size(s));
   std::vector<std::string> cases = a.cases;
-  if (cases.empty() && (a.video.empty() || !a.sweep.empty())) {
+  std::shared_ptr<const pipeline::GraphSpec> graph;
+  if (!a.graph.empty()) {
+    if (a.sweep == "blobs") throw UsageError{"--sweep blobs compares built-in cases; time --graph with --sweep size"};
+    graph = std::make_shared<const pipeline::GraphSpec>(pipeline::load_graph_spec(a.graph));
+    // Its errors now, not after minutes of timing.
+    const auto compiled = pipeline::compile(*graph, pipeline::standard_kernels());
+    plan.notes.push_back(fmt::format("case graph = {}, on the dots frames read as {}", a.graph,
+                                     pipeline::to_string(compiled.source_type())));
+  }
+  if (cases.empty() && graph == nullptr && (a.video.empty() || !a.sweep.empty())) {
     cases = a.sweep.empty() ? bench::case_names : std::vector<std::string>{"dots"};
   }
   const auto check = [&](const bench::BenchCase& c) {
@@ -108,7 +120,7 @@ Plan make_plan(const BenchArgs& a, int all) {
         throw UsageError{"--sweep blobs: case " + name + " has no blob count to vary (use --case dots or chain)"};
       }
       for (const int count : kSweepBlobs) {
-        const bench::BenchCase c{name, size, 0, count, kBlobSweepRadius};
+        const bench::BenchCase c{name, size, 0, count, kBlobSweepRadius, nullptr};
         const std::int64_t found = check(c);
         if (static_cast<double>(found) < kBlobSweepFill * count) {
           plan.notes.push_back(
@@ -124,7 +136,13 @@ Plan make_plan(const BenchArgs& a, int all) {
   if (sizes.empty()) sizes = a.sweep == "size" ? kSweepSizes : kDefaultSizes;
   for (const auto& name : cases) {
     for (const auto& s : sizes) {
-      const bench::BenchCase c{name, s, 0};
+      const bench::BenchCase c{name, s, 0, 100, 0, nullptr};
+      plan.points.push_back({c, check(c)});
+    }
+  }
+  if (graph) {
+    for (const auto& s : sizes) {
+      const bench::BenchCase c{bench::graph_case_name, s, 0, 100, 0, graph};
       plan.points.push_back({c, check(c)});
     }
   }
@@ -162,18 +180,32 @@ void print_header(const Plan& plan) {
              "vs opencv", "vs halide", "floor/np", "np +MiB", "cv +MiB");
 }
 
+// A record of the row, or nullptr where the case has no such implementation (halide beside
+// everything but the chain; opencv beside a user's graph).
+const bench::BenchRecord* record_of(const Row& r, const std::string& impl) {
+  const auto it = r.by_impl.find(impl);
+  return it == r.by_impl.end() ? nullptr : &it->second;
+}
+
+std::string fps_text(const bench::BenchRecord* r) {
+  return r ? fmt::format("{:.1f}", r->fps) : std::string("-");
+}
+
+std::string blobs_text(std::int64_t blobs) {
+  return blobs < 0 ? std::string("-") : std::to_string(blobs);
+}
+
 void print_row(const Row& r) {
   const auto& np = r.by_impl.at("neopipe");
-  const auto& cv = r.by_impl.at("opencv");
   const auto& fl = r.by_impl.at("floor");
-  const auto hl = r.by_impl.find("halide");
-  const bool has_hl = hl != r.by_impl.end();
+  const auto* cv = record_of(r, "opencv");
+  const auto* hl = record_of(r, "halide");
   fmt::print(
-      "{:<6} {:>10} {:>6} {:>7} {:>11.1f} {:>11.1f} {:>11} {:>11.1f} {:>8.2f} {:>8.2f} {:>9} {:>9} {:>8} {:>7} {:>7}\n",
-      r.point->c.name, size_text(r.point->c.size), r.point->blobs_found, r.threads, np.fps, cv.fps,
-      has_hl ? fmt::format("{:.1f}", hl->second.fps) : std::string("-"), fl.fps, np.ns_per_pixel, cv.ns_per_pixel,
-      ratio(np.fps, cv.fps), has_hl ? ratio(np.fps, hl->second.fps) : std::string("-"), ratio(fl.fps, np.fps),
-      mib(np.rss_growth_mib), mib(cv.rss_growth_mib));
+      "{:<6} {:>10} {:>6} {:>7} {:>11.1f} {:>11} {:>11} {:>11.1f} {:>8.2f} {:>8} {:>9} {:>9} {:>8} {:>7} {:>7}\n",
+      r.point->c.name, size_text(r.point->c.size), blobs_text(r.point->blobs_found), r.threads, np.fps, fps_text(cv),
+      fps_text(hl), fl.fps, np.ns_per_pixel, cv ? fmt::format("{:.2f}", cv->ns_per_pixel) : std::string("-"),
+      cv ? ratio(np.fps, cv->fps) : "-", hl ? ratio(np.fps, hl->fps) : "-", ratio(fl.fps, np.fps),
+      mib(np.rss_growth_mib), cv ? mib(cv->rss_growth_mib) : "-");
 }
 
 // f/s at N threads over f/s at 1 thread, for every point measured at 1 thread and at more.
@@ -191,20 +223,23 @@ void print_scaling(const std::vector<Row>& rows) {
       fmt::print("{:<6} {:>10} {:>6} {:>7} {:>8} {:>8}\n", "case", "size", "blobs", "threads", "neopipe", "opencv");
       header = true;
     }
-    const auto& b = base->second->by_impl;
+    const auto* cv = record_of(r, "opencv");
+    const auto* cv1 = record_of(*base->second, "opencv");
     fmt::print("{:<6} {:>10} {:>6} {:>7} {:>8} {:>8}\n", r.point->c.name, size_text(r.point->c.size),
-               r.point->blobs_found, r.threads, ratio(r.by_impl.at("neopipe").fps, b.at("neopipe").fps),
-               ratio(r.by_impl.at("opencv").fps, b.at("opencv").fps));
+               blobs_text(r.point->blobs_found), r.threads,
+               ratio(r.by_impl.at("neopipe").fps, base->second->by_impl.at("neopipe").fps),
+               cv && cv1 ? ratio(cv->fps, cv1->fps) : "-");
   }
 }
 
 BenchJson record_json(const bench::BenchRecord& r, const Plan& plan, const Point& p) {
   return {{"case", r.case_name},
           {"impl", r.impl},
+          {"graph", p.c.graph ? BenchJson(p.c.graph->origin) : BenchJson(nullptr)},
           {"sweep", plan.sweep.empty() ? BenchJson(nullptr) : BenchJson(plan.sweep)},
           {"width", r.width},
           {"height", r.height},
-          {"blobs", p.blobs_found},
+          {"blobs", p.blobs_found < 0 ? BenchJson(nullptr) : BenchJson(p.blobs_found)},
           {"threads", r.threads},
           {"fps", r.fps},
           {"mpix_s", r.mpix_s},
@@ -245,6 +280,9 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       "         stages in Halide (ahead-of-time, strips of 32 rows in parallel, every stage per strip, vectorised),\n"
       "         then neopipe's own blob stage, the next frame's Halide stages overlapping this frame's blobs.\n"
       "  floor  (in every case) one pass summing every pixel: the cost of looking at each pixel once.\n"
+      "  graph  (--graph G.yaml) your own graph through the executor on the dots frames (converted to BGR if it\n"
+      "         reads colour), against the floor; no OpenCV column (there is no general translation). Without\n"
+      "         --case, only the graph is timed; blobs = its first blob output's count on the first frame.\n"
       "Before timing, every case and size is cross-checked: neopipe and OpenCV must find the same blobs (count\n"
       "and total area), and the Halide composite exactly neopipe's blob table, else the bench stops with an error.\n"
       "Sweeps (case dots unless --case says otherwise):\n"
@@ -279,6 +317,8 @@ CLI::App* add_bench_command(CLI::App& parent, BenchArgs& a) {
       ->delimiter(',');
   cmd->add_option("--sweep", a.sweep, "Sweep frame size or blob count instead of the --size list")
       ->check(CLI::IsMember({"size", "blobs"}));
+  cmd->add_option("--graph", a.graph, "Also time this graph spec (YAML) on the dots frames against the read floor")
+      ->type_name("G.yaml");
   cmd->add_option("--video", a.video, "Also measure this video: decode-only f/s (OpenCV, neopipe) vs `neopipe run` f/s")
       ->type_name("FILE");
   cmd->add_flag("--json", a.json, "Print one JSON object (records, peak memory) instead of the tables");

@@ -16,6 +16,7 @@ struct BenchArgs {
   std::vector<std::string> cases;  ///< empty: dots dense chain (dots for a sweep; none with --video alone)
   std::string sweep;               ///< "", "size" or "blobs"
   std::string video;               ///< a video file to measure decode-only against `neopipe run`
+  std::string graph;               ///< a user's graph spec (YAML) to time on the dots frames
   bool json = false;
   double min_seconds = 0.3;
   int repeats = 5;

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "bench/halide_peer.hpp"
 #include "bench/memory.hpp"
@@ -25,24 +27,48 @@ struct Frames {
   int threshold = 0;
 };
 
-Frames make_frames(const BenchCase& c, int n) {
-  Frames f;
-  for (int i = 0; i < n; ++i) {
-    const auto seed = 1000 * static_cast<std::uint64_t>(i) + 17;
-    f.images.push_back(uses_dots_frames(c.name) ? make_dots_frame(c.size, c.blobs, seed, c.radius)
-                                                : make_dense_frame(c.size, seed));
-  }
-  f.threshold = uses_dots_frames(c.name) ? dots_threshold : dense_threshold(f.images.front());
-  return f;
-}
-
-// The graph neopipe runs for the case; its output 0 is the blob table.
-pipeline::CompiledGraph case_graph(const std::string& name, int threshold) {
+// The graph neopipe runs for the case; for the built-in cases its output 0 is the blob table.
+pipeline::CompiledGraph case_graph(const BenchCase& c, int threshold) {
+  const std::string& name = c.name;
+  if (c.graph) return pipeline::compile(*c.graph, pipeline::standard_kernels());
   if (name == "chain") return pipeline::compile(chain_graph(threshold), pipeline::standard_kernels());
   pipeline::BlobGraphOptions o;
   o.threshold = threshold;
   o.source = pipeline::PortType::gray8;
   return pipeline::compile(pipeline::blob_graph(o), pipeline::standard_kernels());
+}
+
+// A user's graph reads gray or BGR frames: the dots frames, converted where it reads colour.
+cv::Mat in_source_format(const BenchCase& c, cv::Mat gray) {
+  if (!c.graph) return gray;
+  const auto type = case_graph(c, 0).source_type();
+  if (type == pipeline::PortType::gray8) return gray;
+  if (type == pipeline::PortType::bgr8) {
+    cv::Mat bgr;
+    cv::cvtColor(gray, bgr, cv::COLOR_GRAY2BGR);
+    return bgr;
+  }
+  throw std::invalid_argument(c.graph->origin + ": its source reads " + std::string(pipeline::to_string(type)) +
+                              " frames; neopipe bench generates gray or bgr frames");
+}
+
+Frames make_frames(const BenchCase& c, int n) {
+  Frames f;
+  for (int i = 0; i < n; ++i) {
+    const auto seed = 1000 * static_cast<std::uint64_t>(i) + 17;
+    f.images.push_back(in_source_format(c, uses_dots_frames(c.name) ? make_dots_frame(c.size, c.blobs, seed, c.radius)
+                                                                    : make_dense_frame(c.size, seed)));
+  }
+  f.threshold = uses_dots_frames(c.name) ? dots_threshold : dense_threshold(f.images.front());
+  return f;
+}
+
+// The first blob table among a frame's outputs, if the graph has one.
+const pipeline::BlobList* first_blob_list(const std::vector<pipeline::Value>& outputs) {
+  for (const auto& v : outputs) {
+    if (const auto* blobs = std::get_if<pipeline::BlobList>(&v)) return blobs;
+  }
+  return nullptr;
 }
 
 // The case the OpenCV way: the number of blobs and their summed area.
@@ -74,12 +100,12 @@ double time_loop(F&& one, double min_seconds) {
   return static_cast<double>(n) / s;
 }
 
-double time_neopipe(const std::string& name, const Frames& f, int threads, double min_seconds) {
-  std::int64_t blobs = 0;
+double time_neopipe(const BenchCase& c, const Frames& f, double min_seconds) {
+  std::int64_t blobs = 0;  // results are looked at, as a user's handler would
   pipeline::ExecutorOptions eo;
-  eo.threads = threads;
-  pipeline::Executor ex(case_graph(name, f.threshold), eo, [&](pipeline::FrameResult&& r) {
-    blobs += static_cast<std::int64_t>(std::get<pipeline::BlobList>(r.outputs[0]).size());
+  eo.threads = c.threads;
+  pipeline::Executor ex(case_graph(c, f.threshold), eo, [&](pipeline::FrameResult&& r) {
+    if (const auto* list = first_blob_list(r.outputs)) blobs += static_cast<std::int64_t>(list->size());
   });
   const auto n_frames = static_cast<std::int64_t>(f.images.size());
   std::int64_t i = 0;
@@ -137,7 +163,7 @@ bool has_halide_peer(const std::string& case_name) {
 }
 
 bool uses_dots_frames(const std::string& case_name) {
-  return case_name == "dots" || case_name == "chain";
+  return case_name == "dots" || case_name == "chain" || case_name == graph_case_name;
 }
 
 pipeline::GraphSpec chain_graph(int threshold) {
@@ -174,13 +200,16 @@ std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& 
   const int saved_cv_threads = cv::getNumThreads();
   cv::setNumThreads(c.threads);
   OpenCvCase opencv(c.name);
+  const bool has_opencv = !c.graph;
   ReadFloor floor(c.threads);
   // Interleave the implementations so a slow spell of the machine hits all of them alike.
   for (int r = 0; r < std::max(o.repeats, 1); ++r) {
     const bool first = r == 0;
-    np.push_back(timed_with_memory([&] { return time_neopipe(c.name, f, c.threads, o.min_seconds); }, first, np_mem));
-    cvv.push_back(timed_with_memory(
-        [&] { return time_loop([&](int i) { opencv(frame(i), f.threshold); }, o.min_seconds); }, first, cv_mem));
+    np.push_back(timed_with_memory([&] { return time_neopipe(c, f, o.min_seconds); }, first, np_mem));
+    if (has_opencv) {
+      cvv.push_back(timed_with_memory(
+          [&] { return time_loop([&](int i) { opencv(frame(i), f.threshold); }, o.min_seconds); }, first, cv_mem));
+    }
     fl.push_back(
         timed_with_memory([&] { return time_loop([&](int i) { floor(frame(i)); }, o.min_seconds); }, first, fl_mem));
     if (has_halide_peer(c.name)) {
@@ -202,7 +231,11 @@ std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& 
 
 CrossCheck cross_check(const BenchCase& c) {
   const Frames f = make_frames(c, 1);
-  const auto results = pipeline::run_frames(case_graph(c.name, f.threshold), {f.images.front()}, {});
+  const auto results = pipeline::run_frames(case_graph(c, f.threshold), {f.images.front()}, {});
+  if (c.graph) {
+    const auto* list = first_blob_list(results.front().outputs);
+    return {list ? static_cast<std::int64_t>(list->size()) : -1, {}};
+  }
   const auto& ours = std::get<pipeline::BlobList>(results.front().outputs[0]);
   std::int64_t our_area = 0;
   for (const auto& b : ours) our_area += b.area;

@@ -3,6 +3,7 @@
 // OpenCV calls, and the memory-read floor, on the same generated frames, in the same run.
 
 #include <cstdint>
+#include <memory>
 #include <opencv2/core/types.hpp>
 #include <optional>
 #include <string>
@@ -22,12 +23,17 @@ bool has_halide_peer(const std::string& case_name);
 /// True for the cases whose frames are make_dots_frame's disks (so a blob count and radius apply).
 bool uses_dots_frames(const std::string& case_name);
 
+/// The case name of a user's graph (`neopipe bench --graph G.yaml`): the dots frames, converted to
+/// the graph's source format, timed against the read floor (there is no general OpenCV translation).
+inline const std::string graph_case_name = "graph";
+
 struct BenchCase {
-  std::string name;  ///< "dots", "dense" or "chain"
+  std::string name;  ///< "dots", "dense", "chain" or graph_case_name
   cv::Size size;
   int threads = 1;
-  int blobs = 100;    ///< dots and chain: disks drawn (fewer where they do not fit)
-  double radius = 0;  ///< dots and chain: disk radius; 0: min(w, h) / 80, at least 3
+  int blobs = 100;                                   ///< dots and chain: disks drawn (fewer where they do not fit)
+  double radius = 0;                                 ///< dots and chain: disk radius; 0: min(w, h) / 80, at least 3
+  std::shared_ptr<const pipeline::GraphSpec> graph;  ///< case graph_case_name: the user's graph
 };
 
 struct BenchRecord {
@@ -56,13 +62,14 @@ struct BenchOptions {
 std::vector<BenchRecord> run_blob_bench(const BenchCase& c, const BenchOptions& o);
 
 struct CrossCheck {
-  std::int64_t blobs = 0;  ///< what neopipe found on the case's first frame
+  std::int64_t blobs = 0;  ///< what neopipe found on the case's first frame (a user's graph: -1 without a blob output)
   std::string mismatch;    ///< empty when OpenCV found the same
 };
 
 /// Checks that neopipe and OpenCV find the same number of blobs, with the same total area, on the
 /// case's first frame, and that the Halide composite (where the case has one) finds exactly
-/// neopipe's blob table (a benchmark of two programs that disagree measures nothing).
+/// neopipe's blob table (a benchmark of two programs that disagree measures nothing). A user's graph
+/// is only run once (it has no peer to agree with); its errors are thrown.
 CrossCheck cross_check(const BenchCase& c);
 
 /// The chain case's graph, on gray frames: conv3x3 smooth ([1 2 1; 2 4 2; 1 2 1] / 16) -> threshold

@@ -1211,11 +1211,11 @@ TEST_F(Cli, BenchJsonRecords) {
   const json records = bench_records(r);
   std::set<std::string> impls;
   for (const auto& rec : records) {
-    for (const char* k : {"case", "impl", "sweep", "width", "height", "blobs", "threads", "fps", "mpix_s",
+    for (const char* k : {"case", "impl", "graph", "sweep", "width", "height", "blobs", "threads", "fps", "mpix_s",
                           "ns_per_pixel", "rss_growth_mib"}) {
       ASSERT_TRUE(rec.contains(k)) << k << " missing in " << rec.dump();
     }
-    EXPECT_EQ(rec.size(), 11u) << rec.dump();
+    EXPECT_EQ(rec.size(), 12u) << rec.dump();
     EXPECT_EQ(rec["case"], "dots");
     EXPECT_TRUE(rec["sweep"].is_null());
     EXPECT_EQ(rec["width"], 64);
@@ -1261,6 +1261,63 @@ TEST_F(Cli, BenchChainCaseRunsAndReports) {
     // The disks survive the opening: neopipe and OpenCV agreed on a non-zero count.
     EXPECT_GT(rec["blobs"].get<int>(), 0);
   }
+}
+
+// --graph times a user's graph on the dots frames: examples/blobs.yaml (BGR -> gray -> Otsu -> blobs)
+// finds the dots case's disks, and the records say which graph; no OpenCV or Halide records.
+TEST_F(Cli, BenchGraphTimesAUserGraphAgainstTheFloor) {
+  const std::string graph = (examples / "blobs.yaml").string();
+  const RunResult r = run_bench({"--graph", graph, "--case", "dots", "--size", "96x72", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(r)) << r.err;
+  const json records = bench_records(r);
+  std::set<std::string> graph_impls;
+  int dots_blobs = -1;
+  int graph_blobs = -2;
+  for (const auto& rec : records) {
+    if (rec["case"] == "dots") {
+      dots_blobs = rec["blobs"].get<int>();
+      EXPECT_TRUE(rec["graph"].is_null());
+    } else {
+      ASSERT_EQ(rec["case"], "graph") << r.out;
+      EXPECT_EQ(rec["graph"], graph);
+      graph_impls.insert(rec["impl"].get<std::string>());
+      graph_blobs = rec["blobs"].get<int>();
+      EXPECT_GT(rec["fps"].get<double>(), 0);
+    }
+  }
+  EXPECT_EQ(graph_impls, (std::set<std::string>{"neopipe", "floor"})) << r.out;
+  EXPECT_GT(dots_blobs, 0);
+  EXPECT_EQ(graph_blobs, dots_blobs) << r.out;
+
+  // A graph without a blob output has no blob count; the table shows '-' for what it lacks.
+  const fs::path image_only = dir / "threshold_only.yaml";
+  std::ofstream(image_only) << "name: t\nnodes:\n  - name: src\n    kernel: source\n    params: {format: gray}\n"
+                               "  - name: t\n    kernel: threshold\n    params: {value: 100}\n    inputs: {in: src}\n"
+                               "outputs: [t]\n";
+  const RunResult j = run_bench({"--graph", image_only.string(), "--size", "64x64", "--threads", "1", "--json"});
+  ASSERT_TRUE(succeeded(j)) << j.err;
+  for (const auto& rec : bench_records(j)) {
+    EXPECT_EQ(rec["case"], "graph");
+    EXPECT_TRUE(rec["blobs"].is_null());
+  }
+  const RunResult t = run_bench({"--graph", image_only.string(), "--size", "64x64", "--threads", "1"});
+  ASSERT_TRUE(succeeded(t)) << t.err;
+  EXPECT_TRUE(contains(t.out, "note: case graph = " + image_only.string())) << t.out;
+}
+
+TEST_F(Cli, BenchGraphBadInputIsOneLine) {
+  const fs::path bad = dir / "unknown_kernel.yaml";
+  std::ofstream(bad) << "name: x\nnodes:\n  - name: src\n    kernel: source\n    params: {format: gray}\n"
+                        "  - name: t\n    kernel: nosuch\n    inputs: {in: src}\noutputs: [t]\n";
+  for (const auto& [path, needle] : {std::pair{bad.string(), std::string("unknown kernel 'nosuch'")},
+                                     std::pair{(dir / "missing.yaml").string(), std::string("cannot open")}}) {
+    const RunResult r = run_bench({"--graph", path, "--size", "64x64", "--threads", "1"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(split_lines(r.err).size(), 1u) << r.err;
+    EXPECT_TRUE(contains(r.err, path) && contains(r.err, needle)) << r.err;
+  }
+  const RunResult s = run_bench({"--graph", bad.string(), "--sweep", "blobs"});
+  EXPECT_EQ(s.exit_code, 2) << s.err;
 }
 
 TEST_F(Cli, BenchSweepSizeGivesOneRowPerSize) {
@@ -1361,8 +1418,8 @@ TEST_F(Cli, BenchVideoReportsDecodeOnlyAndRunRates) {
 // A timed run shorter than the video measures its first frames only; the bench says so, with the
 // --min-time that makes each run a whole pass, and says nothing when every run was one.
 TEST_F(Cli, BenchVideoNotesTimedRunsShorterThanTheVideo) {
-  const RunResult whole = run_neopipe(
-      {"bench", "--video", avi.string(), "--threads", "1", "--repeats", "1", "--min-time", "2", "--json"});
+  const RunResult whole =
+      run_neopipe({"bench", "--video", avi.string(), "--threads", "1", "--repeats", "1", "--min-time", "2", "--json"});
   // The note appears when a timed run's --min-time ends before the video does: 2 s cover the short
   // clip unless it decodes below a few frames/s (0.5 s did not, under a sanitizer with the suite
   // running beside).
