@@ -37,6 +37,7 @@ void RelationalMap::add_landmark(LandmarkId id) {
   index_.emplace(id, static_cast<int>(k));
   // The new landmark is the largest index: its triples {i < j < k} come last, each unknown.
   masks_.resize(3 * triple_rank(0, 0, k + 1), StateSet::kAllMask);
+  pending_.resize(triple_rank(0, 0, k + 1), 0);
   // k's pairs {i < k} come last by rank, with no known triple yet; more landmarks than the bitsets
   // hold widen every pair's bitset (rare: one more word per 64 landmarks).
   const std::size_t words = (ids_.size() + kWordBits - 1) / kWordBits;
@@ -122,6 +123,19 @@ StateSet RelationalMap::relation(LandmarkId p, LandmarkId q, LandmarkId r) const
   return read(a, b, c);
 }
 
+NEOPIPE_QRM_MAP_HOT void RelationalMap::store(std::uint32_t mask_index, StateSet::Mask next, int x, int y, int z) {
+  journal_.push_back({mask_index, masks_[mask_index], {x, y, z}});
+  masks_[mask_index] = next;
+  // next is a strict subset of what was stored, so never "all": the triple is known from now on.
+  set_known(x, y, z);
+}
+
+NEOPIPE_QRM_MAP_HOT void RelationalMap::mark_changed(std::size_t rank, int which, int x, int y, int z) {
+  std::uint8_t& bits = pending_[rank];
+  if (bits == 0) queue_.push_back({x, y, z});
+  bits = static_cast<std::uint8_t>(bits | (1U << static_cast<unsigned>(which)));
+}
+
 NEOPIPE_QRM_MAP_HOT bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
   if (states.is_all()) return true;
   const Slot s = slot(a, b, c);
@@ -130,14 +144,39 @@ NEOPIPE_QRM_MAP_HOT bool RelationalMap::restrict(int a, int b, int c, StateSet s
   const StateSet next = current & states;
   if (next == current) return true;
   if (next.empty()) return false;
-  // next is a strict subset of current, so never "all": the triple is known from now on.
   const int x = std::min({a, b, c});
   const int z = std::max({a, b, c});
   const int y = a + b + c - x - z;
-  journal_.push_back({s.mask_index, stored.mask(), {x, y, z}});
-  masks_[s.mask_index] = (s.inverse ? inverse(next) : next).mask();
-  set_known(x, y, z);
-  queue_.push_back({a, b, c});
+  store(s.mask_index, (s.inverse ? inverse(next) : next).mask(), x, y, z);
+  mark_changed(s.mask_index / 3, static_cast<int>(s.mask_index % 3), x, y, z);
+  return true;
+}
+
+bool RelationalMap::close_triple(const Triple& sorted, std::size_t rank, unsigned& changed) {
+  // m[0] = xy:z, m[1] = yz:x, m[2] = zx:y: L takes each to the next, R to the one before.
+  std::array<StateSet, 3> m{};
+  for (std::size_t w = 0; w < 3; ++w) m[w] = StateSet::from_mask(masks_[3 * rank + w]);
+  for (bool again = true; again;) {
+    again = false;
+    for (std::size_t w = 0; w < 3; ++w) {
+      StateSet& next = m[(w + 1) % 3];
+      StateSet& before = m[(w + 2) % 3];
+      const StateSet left = next & left_shift(m[w]);
+      const StateSet right = before & right_shift(m[w]);
+      again = again || left != next || right != before;
+      next = left;
+      before = right;
+    }
+  }
+  for (std::size_t w = 0; w < 3; ++w) {
+    if (m[w].empty()) return false;
+  }
+  for (std::size_t w = 0; w < 3; ++w) {
+    const auto index = static_cast<std::uint32_t>(3 * rank + w);
+    if (m[w].mask() == masks_[index]) continue;
+    store(index, m[w].mask(), sorted[0], sorted[1], sorted[2]);
+    changed |= 1U << w;
+  }
   return true;
 }
 
@@ -152,43 +191,58 @@ const RelationalMap::Informative& RelationalMap::informative(StateSet x) {
   return informative_.emplace(x.mask(), out).first->second;
 }
 
-bool RelationalMap::process(const Triple& t) {
-  const auto [a, b, c] = t;
-  const StateSet abc = read(a, b, c);
-  if (!restrict(b, c, a, left_shift(abc)) || !restrict(c, a, b, right_shift(abc))) return false;
-  const std::array<Triple, 6> orders{{{a, b, c}, {b, c, a}, {c, a, b}, {b, a, c}, {a, c, b}, {c, b, a}}};
+bool RelationalMap::propagate_order(int p, int q, int r) {
   const CompositionTable& comp = *table_;
-  for (const auto& [p, q, r] : orders) {
-    const StateSet pqr = read(p, q, r);
-    if (pqr.is_all()) continue;  // comp(all, s) = comp(s, all) = all: nothing to learn
-    // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
-    // contains it), and likewise comp(dp:q, pqr): such compositions are skipped, and the order
-    // itself when none can be informative (relations are never empty).
-    const Informative& useful = informative(pqr);
-    const StateSet::Mask right_useless = StateSet::kAllMask & ~useful.right;
-    const StateSet::Mask left_useless = StateSet::kAllMask & ~useful.left;
-    if (useful.right == 0 && useful.left == 0) continue;
-    // Every d in increasing order, as a loop over all landmarks would, but only those for which
-    // qr:d or dp:q may be known: for the others both reads below are "all" and skipped. Within
-    // this loop the restrictions at d change the bits of {q, r} and {p, q} at d only, so a word
-    // read once is what the loop over all d would have found.
-    const Word* qr_known = known(q, r);
-    const Word* pq_known = known(p, q);
-    // A half that can learn nothing does not need its landmarks visited (the other half's reads
-    // are "all" there, and no restriction of the skipped half can make them known).
-    const Word qr_mask = useful.right != 0 ? ~Word{0} : 0;
-    const Word pq_mask = useful.left != 0 ? ~Word{0} : 0;
-    for (std::size_t w = 0; w < words_; ++w) {
-      for (Word bits = (qr_known[w] & qr_mask) | (pq_known[w] & pq_mask); bits != 0; bits &= bits - 1) {
-        const int d = static_cast<int>(w * kWordBits) + std::countr_zero(bits);
-        if (d == p || d == q || d == r) continue;
-        // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
-        const StateSet qrd = read(q, r, d);
-        if (!qrd.is_all() && (qrd.mask() & right_useless) == 0 && !restrict(p, q, d, comp(pqr, qrd))) return false;
-        // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
-        const StateSet dpq = read(d, p, q);
-        if (!dpq.is_all() && (dpq.mask() & left_useless) == 0 && !restrict(d, p, r, comp(dpq, pqr))) return false;
-      }
+  const StateSet pqr = read(p, q, r);
+  if (pqr.is_all()) return true;  // comp(all, s) = comp(s, all) = all: nothing to learn
+  // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
+  // contains it), and likewise comp(dp:q, pqr): such compositions are skipped, and the order
+  // itself when none can be informative (relations are never empty).
+  const Informative& useful = informative(pqr);
+  const StateSet::Mask right_useless = StateSet::kAllMask & ~useful.right;
+  const StateSet::Mask left_useless = StateSet::kAllMask & ~useful.left;
+  if (useful.right == 0 && useful.left == 0) return true;
+  // Every d in increasing order, as a loop over all landmarks would, but only those for which
+  // qr:d or dp:q may be known: for the others both reads below are "all" and skipped. Within
+  // this loop the restrictions at d change the bits of {q, r} and {p, q} at d only, so a word
+  // read once is what the loop over all d would have found.
+  const Word* qr_known = known(q, r);
+  const Word* pq_known = known(p, q);
+  // A half that can learn nothing does not need its landmarks visited (the other half's reads
+  // are "all" there, and no restriction of the skipped half can make them known).
+  const Word qr_mask = useful.right != 0 ? ~Word{0} : 0;
+  const Word pq_mask = useful.left != 0 ? ~Word{0} : 0;
+  for (std::size_t w = 0; w < words_; ++w) {
+    for (Word bits = (qr_known[w] & qr_mask) | (pq_known[w] & pq_mask); bits != 0; bits &= bits - 1) {
+      const int d = static_cast<int>(w * kWordBits) + std::countr_zero(bits);
+      if (d == p || d == q || d == r) continue;
+      // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
+      const StateSet qrd = read(q, r, d);
+      if (!qrd.is_all() && (qrd.mask() & right_useless) == 0 && !restrict(p, q, d, comp(pqr, qrd))) return false;
+      // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
+      const StateSet dpq = read(d, p, q);
+      if (!dpq.is_all() && (dpq.mask() & left_useless) == 0 && !restrict(d, p, r, comp(dpq, pqr))) return false;
+    }
+  }
+  return true;
+}
+
+bool RelationalMap::process(const Triple& sorted) {
+  const auto [x, y, z] = sorted;
+  const std::size_t rank =
+      triple_rank(static_cast<std::size_t>(x), static_cast<std::size_t>(y), static_cast<std::size_t>(z));
+  unsigned changed = pending_[rank];
+  // Composition never restricts the triple it reads pq:r from (d is a fourth landmark), so nothing
+  // below queues this triple again: what the closure changes is composed in this visit.
+  pending_[rank] = 0;
+  if (!close_triple(sorted, rank, changed)) return false;
+  // Stored mask w is read by two orders, pq:r and qp:r = I(pq:r).
+  const std::array<std::array<Triple, 2>, 3> readers{
+      {{{{x, y, z}, {y, x, z}}}, {{{y, z, x}, {z, y, x}}}, {{{z, x, y}, {x, z, y}}}}};
+  for (std::size_t w = 0; w < 3; ++w) {
+    if ((changed & (1U << w)) == 0) continue;
+    for (const auto& [p, q, r] : readers[w]) {
+      if (!propagate_order(p, q, r)) return false;
     }
   }
   return true;
@@ -208,6 +262,11 @@ FuseOutcome RelationalMap::fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateS
     consistent = process(t);
   }
   if (!consistent) {
+    // The triples still queued are abandoned with the measurement.
+    for (const Triple& t : queue_) {
+      pending_[triple_rank(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+                           static_cast<std::size_t>(t[2]))] = 0;
+    }
     // Newest first, so a relation changed twice ends at its value before the measurement.
     for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].mask_index] = journal_[n].before;
     // A triple all of whose relations are "all" again is unknown again.

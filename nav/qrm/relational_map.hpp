@@ -66,7 +66,16 @@ class RelationalMap {
   StateSet read(int p, int q, int r) const;
   /// false when the restriction empties the relation.
   bool restrict(int a, int b, int c, StateSet states);
-  bool process(const Triple& t);
+  /// Stores a changed mask of the triple {x < y < z}: journalled and known, not queued.
+  void store(std::uint32_t mask_index, StateSet::Mask next, int x, int y, int z);
+  /// The triple {x < y < z} (by rank) changed its stored mask `which`: queued unless it is already.
+  void mark_changed(std::size_t rank, int which, int x, int y, int z);
+  /// Closes the triple's own relations under L and R in place; false on an empty relation. The
+  /// stored masks that changed are added to `changed` (bit 0: xy:z, 1: yz:x, 2: zx:y).
+  bool close_triple(const Triple& sorted, std::size_t rank, unsigned& changed);
+  /// Composes one order's pq:r with every known neighbour relation; false on an inconsistency.
+  bool propagate_order(int p, int q, int r);
+  bool process(const Triple& sorted);
   /// The bitset of third landmarks d for which {i, j, d} is known (i != j, either order).
   Word* known(int i, int j) { return known_.data() + pair_rank(i, j) * words_; }
   static std::size_t pair_rank(int i, int j);
@@ -102,7 +111,12 @@ class RelationalMap {
   };
   const Informative& informative(StateSet x);
   std::unordered_map<StateSet::Mask, Informative> informative_;
+  /// Sorted triples waiting to be processed, each at most once: a triple's `pending_` bits are the
+  /// stored masks that changed since it was last processed (bit 0: xy:z, 1: yz:x, 2: zx:y), and it
+  /// is in the queue exactly while some are set. Only the orders reading a changed mask are composed
+  /// again when it is processed; the others were composed with the same value before.
   std::vector<Triple> queue_;
+  std::vector<std::uint8_t> pending_;
 };
 
 }  // namespace neopipe::nav::qrm
