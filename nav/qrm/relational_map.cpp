@@ -47,6 +47,7 @@ void RelationalMap::add_landmark(LandmarkId id) {
   ids_.push_back(id);
   index_.emplace(id, static_cast<int>(k));
   const std::size_t n = ids_.size();
+  candidates_.resize(n);
   // The new landmark is the largest index: its triples {i < j < k} come last, none pending.
   pending_.resize(qrm_triple_rank(0, 0, static_cast<int>(n)), 0);
   const std::size_t pairs = n * (n - 1) / 2;
@@ -167,14 +168,30 @@ bool RelationalMap::close_triple(const Triple& sorted, unsigned& changed) {
 }
 
 const RelationalMap::Informative& RelationalMap::informative(StateSet x) {
-  const auto found = informative_.find(x.mask());
-  if (found != informative_.end()) return found->second;
+  const Mask key = x.mask();
+  // Fibonacci hashing: the top bits of the product spread the 20-bit masks over the slots.
+  InformativeSlot& slot = informative_[(key * 0x9E3779B1U) >> (32 - kInformativeBits)];
+  if (slot.key == key) return slot.value;
   Informative out{0, 0};
   for (State s = 1; s <= kStateCount; ++s) {
-    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= StateSet::Mask{1} << s;
-    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= StateSet::Mask{1} << s;
+    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= Mask{1} << s;
+    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= Mask{1} << s;
   }
-  return informative_.emplace(x.mask(), out).first->second;
+  slot = {key, out};
+  return slot.value;
+}
+
+NEOPIPE_QRM_MAP_HOT int RelationalMap::scan_row(const Mask* row, Mask skip, int n) {
+  // Most values are "all" or hold a useless state, unpredictably: branch-free, the few that pass
+  // are listed without a mispredicted jump per landmark (out[found] is overwritten until one does).
+  int found = 0;
+  int* out = candidates_.data();
+  for (int d = 0; d < n; ++d) {
+    const Mask m = row[d];
+    out[found] = d;
+    found += static_cast<int>(m != StateSet::kAllMask && (m & skip) == 0);
+  }
+  return found;
 }
 
 bool RelationalMap::propagate_order(int p, int q, int r) {
@@ -194,11 +211,12 @@ bool RelationalMap::propagate_order(int p, int q, int r) {
     const Mask* qr = flipped ? row(r, q, 0) : row(q, r, 0);
     const StateSet useless = StateSet::from_mask(StateSet::kAllMask & ~useful.right);
     const Mask skip = (flipped ? inverse(useless) : useless).mask();
-    for (int d = 0; d < n; ++d) {
-      const Mask m = qr[d];
-      if (m == StateSet::kAllMask || (m & skip) != 0 || d == p) continue;
-      const StateSet qrd = flipped ? inverse(StateSet::from_mask(m)) : StateSet::from_mask(m);
-      if (!restrict(p, q, d, comp(pqr, qrd))) return false;
+    const int found = scan_row(qr, skip, n);
+    for (int c = 0; c < found; ++c) {
+      const int d = candidates_[static_cast<std::size_t>(c)];
+      if (d == p) continue;
+      const StateSet stored = StateSet::from_mask(qr[d]);
+      if (!restrict(p, q, d, comp(pqr, flipped ? inverse(stored) : stored))) return false;
     }
   }
   if (useful.left != 0) {
@@ -208,11 +226,12 @@ bool RelationalMap::propagate_order(int p, int q, int r) {
     const Mask* dp = flipped ? row(q, p, 1) : row(p, q, 2);
     const StateSet useless = StateSet::from_mask(StateSet::kAllMask & ~useful.left);
     const Mask skip = (flipped ? inverse(useless) : useless).mask();
-    for (int d = 0; d < n; ++d) {
-      const Mask m = dp[d];
-      if (m == StateSet::kAllMask || (m & skip) != 0 || d == r) continue;
-      const StateSet dpq = flipped ? inverse(StateSet::from_mask(m)) : StateSet::from_mask(m);
-      if (!restrict(d, p, r, comp(dpq, pqr))) return false;
+    const int found = scan_row(dp, skip, n);
+    for (int c = 0; c < found; ++c) {
+      const int d = candidates_[static_cast<std::size_t>(c)];
+      if (d == r) continue;
+      const StateSet stored = StateSet::from_mask(dp[d]);
+      if (!restrict(d, p, r, comp(flipped ? inverse(stored) : stored, pqr))) return false;
     }
   }
   return true;

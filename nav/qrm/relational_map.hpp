@@ -66,6 +66,9 @@ class RelationalMap {
   /// Closes the triple's own relations under L and R in place; false on an empty relation. The
   /// relations that changed are added to `changed` (bit 0: xy:z, 1: yz:x, 2: zx:y).
   bool close_triple(const Triple& sorted, unsigned& changed);
+  /// Lists in `candidates_` the d < n whose row value is neither "all" nor holds a state of `skip`;
+  /// returns how many.
+  int scan_row(const Mask* row, Mask skip, int n);
   /// Composes one order's pq:r with every other relation it meets; false on an inconsistency.
   bool propagate_order(int p, int q, int r);
   bool process(const Triple& sorted);
@@ -95,7 +98,16 @@ class RelationalMap {
     Mask left;
   };
   const Informative& informative(StateSet x);
-  std::unordered_map<Mask, Informative> informative_;
+  /// A direct-mapped cache of them (a hash lookup was a tenth of the propagation): slot by a hash of
+  /// the mask, replaced on a miss; key 0 marks an empty slot (a relation is never empty).
+  struct InformativeSlot {
+    Mask key = 0;
+    Informative value{0, 0};
+  };
+  static constexpr int kInformativeBits = 12;
+  std::vector<InformativeSlot> informative_ = std::vector<InformativeSlot>(std::size_t{1} << kInformativeBits);
+  /// Scratch of propagate_order: the landmarks d whose relation passed the scan.
+  std::vector<int> candidates_;
   /// Sorted triples waiting to be processed, each at most once: a triple's `pending_` bits are the
   /// relations that changed since it was last processed (bit 0: xy:z, 1: yz:x, 2: zx:y), and it is
   /// in the queue exactly while some are set. Only the orders reading a changed relation are
