@@ -1,7 +1,6 @@
 #include "nav/qrm/relational_map.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <string>
 
 #include "nav/qrm/operators.hpp"
@@ -12,9 +11,8 @@ RelationalMap::RelationalMap(const CompositionTable& table) : table_(&table) {}
 
 namespace {
 
-// slot(), read() and restrict() run a few hundred million times while a 100-landmark map is built
-// (propagation reads every known neighbour of a changed triple): calls to them were a third of the
-// time, so they are forced inline into process() where the compiler would not.
+// read(), write() and restrict() run hundreds of millions of times while a 100-landmark map is
+// built: they are forced inline into the propagation where the compiler would not.
 #if defined(__GNUC__)
 #define NEOPIPE_QRM_MAP_HOT [[gnu::always_inline]] inline
 #else
@@ -22,11 +20,24 @@ namespace {
 #endif
 
 // The unordered triples {i < j < k} in the order landmarks join the map (all of k's after all of
-// k - 1's): C(k, 3) + C(j, 2) + i, the combinatorial number system. A closed form, so a read
-// touches no index table, and a map of any size is one flat array of masks.
-std::size_t triple_rank(std::size_t i, std::size_t j, std::size_t k) {
-  return k * (k - 1) * (k - 2) / 6 + j * (j - 1) / 2 + i;
+// k - 1's): C(k, 3) + C(j, 2) + i, the combinatorial number system.
+std::size_t qrm_triple_rank(int i, int j, int k) {
+  const auto a = static_cast<std::size_t>(i);
+  const auto b = static_cast<std::size_t>(j);
+  const auto c = static_cast<std::size_t>(k);
+  return c * (c - 1) * (c - 2) / 6 + b * (b - 1) / 2 + a;
 }
+
+// The pairs {i < j} likewise: C(j, 2) + i.
+std::size_t qrm_pair_rank(int i, int j) {
+  const auto a = static_cast<std::size_t>(i);
+  const auto b = static_cast<std::size_t>(j);
+  return b * (b - 1) / 2 + a;
+}
+
+// Rows are widened in steps of this many landmarks: each widening copies the map, and a step
+// leaves at most this many unused entries per row.
+constexpr std::size_t kQrmRowStep = 32;
 
 }  // namespace
 
@@ -35,45 +46,24 @@ void RelationalMap::add_landmark(LandmarkId id) {
   const std::size_t k = ids_.size();
   ids_.push_back(id);
   index_.emplace(id, static_cast<int>(k));
-  // The new landmark is the largest index: its triples {i < j < k} come last, each unknown.
-  masks_.resize(3 * triple_rank(0, 0, k + 1), StateSet::kAllMask);
-  // k's pairs {i < k} come last by rank, with no known triple yet; more landmarks than the bitsets
-  // hold widen every pair's bitset (rare: one more word per 64 landmarks).
-  const std::size_t words = (ids_.size() + kWordBits - 1) / kWordBits;
-  const std::size_t pairs = ids_.size() * (ids_.size() - 1) / 2;
-  if (words == words_) {
-    known_.resize(pairs * words_, 0);
+  const std::size_t n = ids_.size();
+  candidates_.resize(n);
+  // The new landmark is the largest index: its triples {i < j < k} come last, none pending.
+  pending_.resize(qrm_triple_rank(0, 0, static_cast<int>(n)), 0);
+  const std::size_t pairs = n * (n - 1) / 2;
+  if (n <= stride_) {
+    // k's pairs {i < k} come last by rank, every relation "all".
+    rows_.resize(3 * pairs * stride_, StateSet::kAllMask);
     return;
   }
-  std::vector<Word> wider(pairs * words, 0);
-  for (std::size_t pair = 0; pair < (words_ == 0 ? 0 : known_.size() / words_); ++pair) {
-    std::copy_n(known_.begin() + static_cast<std::ptrdiff_t>(pair * words_), words_,
-                wider.begin() + static_cast<std::ptrdiff_t>(pair * words));
+  const std::size_t stride = (n + kQrmRowStep - 1) / kQrmRowStep * kQrmRowStep;
+  std::vector<Mask> wider(3 * pairs * stride, StateSet::kAllMask);
+  for (std::size_t r = 0; r < (stride_ == 0 ? 0 : rows_.size() / stride_); ++r) {
+    std::copy_n(rows_.begin() + static_cast<std::ptrdiff_t>(r * stride_), stride_,
+                wider.begin() + static_cast<std::ptrdiff_t>(r * stride));
   }
-  known_ = std::move(wider);
-  words_ = words;
-}
-
-std::size_t RelationalMap::pair_rank(int i, int j) {
-  const auto lo = static_cast<std::size_t>(std::min(i, j));
-  const auto hi = static_cast<std::size_t>(std::max(i, j));
-  return hi * (hi - 1) / 2 + lo;
-}
-
-void RelationalMap::set_known(int x, int y, int z) {
-  const auto bit = [](int d) { return Word{1} << (static_cast<unsigned>(d) % kWordBits); };
-  const auto word = [](int d) { return static_cast<std::size_t>(d) / kWordBits; };
-  known(x, y)[word(z)] |= bit(z);
-  known(y, z)[word(x)] |= bit(x);
-  known(x, z)[word(y)] |= bit(y);
-}
-
-void RelationalMap::clear_known(int x, int y, int z) {
-  const auto bit = [](int d) { return Word{1} << (static_cast<unsigned>(d) % kWordBits); };
-  const auto word = [](int d) { return static_cast<std::size_t>(d) / kWordBits; };
-  known(x, y)[word(z)] &= ~bit(z);
-  known(y, z)[word(x)] &= ~bit(x);
-  known(x, z)[word(y)] &= ~bit(y);
+  rows_ = std::move(wider);
+  stride_ = stride;
 }
 
 int RelationalMap::index_of(LandmarkId id) const {
@@ -82,36 +72,41 @@ int RelationalMap::index_of(LandmarkId id) const {
   return it->second;
 }
 
-NEOPIPE_QRM_MAP_HOT RelationalMap::Slot RelationalMap::slot(int p, int q, int r) const {
-  // Stored for x < y < z: xy:z (0), yz:x (1), zx:y (2). qp:r = I(pq:r), so first make p < q.
-  bool inverse = p > q;
-  const int i = std::min(p, q);
-  const int j = std::max(p, q);
-  int x = i;
-  int y = j;
-  int z = r;
-  std::uint32_t which = 0;  // j < r: ij:r = xy:z
-  if (r < i) {              // r < i < j: ij:r = yz:x
-    x = r;
-    y = i;
-    z = j;
-    which = 1;
-  } else if (r < j) {  // i < r < j: ij:r = xz:y = I(zx:y)
-    y = r;
-    z = j;
-    which = 2;
-    inverse = !inverse;
-  }
-  return {static_cast<std::uint32_t>(
-              3 * triple_rank(static_cast<std::size_t>(x), static_cast<std::size_t>(y), static_cast<std::size_t>(z)) +
-              which),
-          inverse};
+NEOPIPE_QRM_MAP_HOT RelationalMap::Mask* RelationalMap::row(int i, int j, int w) {
+  return rows_.data() + (3 * qrm_pair_rank(i, j) + static_cast<std::size_t>(w)) * stride_;
+}
+
+NEOPIPE_QRM_MAP_HOT const RelationalMap::Mask* RelationalMap::row(int i, int j, int w) const {
+  return rows_.data() + (3 * qrm_pair_rank(i, j) + static_cast<std::size_t>(w)) * stride_;
 }
 
 NEOPIPE_QRM_MAP_HOT StateSet RelationalMap::read(int p, int q, int r) const {
-  const Slot s = slot(p, q, r);
-  const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
-  return s.inverse ? inverse(stored) : stored;
+  const auto d = static_cast<std::size_t>(r);
+  // qp:r = I(pq:r): the pair's first row holds the order with the smaller landmark first.
+  return p < q ? StateSet::from_mask(row(p, q, 0)[d]) : inverse(StateSet::from_mask(row(q, p, 0)[d]));
+}
+
+NEOPIPE_QRM_MAP_HOT void RelationalMap::write(int p, int q, int r, StateSet value) {
+  const Mask v = value.mask();
+  const Mask iv = inverse(value).mask();
+  // With the rows ij:d, jd:i, di:j of a pair {i < j}: pq:r is ij:d of {p, q} (d = r) when p < q,
+  // di:j of {q, r} (d = p) when q < r, else I of jd:i; I of di:j of {p, r} (d = q) when p < r,
+  // else jd:i.
+  if (p < q) {
+    row(p, q, 0)[r] = v;
+  } else {
+    row(q, p, 0)[r] = iv;
+  }
+  if (q < r) {
+    row(q, r, 2)[p] = v;
+  } else {
+    row(r, q, 1)[p] = iv;
+  }
+  if (p < r) {
+    row(p, r, 2)[q] = iv;
+  } else {
+    row(r, p, 1)[q] = v;
+  }
 }
 
 StateSet RelationalMap::relation(LandmarkId p, LandmarkId q, LandmarkId r) const {
@@ -124,71 +119,139 @@ StateSet RelationalMap::relation(LandmarkId p, LandmarkId q, LandmarkId r) const
 
 NEOPIPE_QRM_MAP_HOT bool RelationalMap::restrict(int a, int b, int c, StateSet states) {
   if (states.is_all()) return true;
-  const Slot s = slot(a, b, c);
-  const StateSet stored = StateSet::from_mask(masks_[s.mask_index]);
-  const StateSet current = s.inverse ? inverse(stored) : stored;
+  const StateSet current = read(a, b, c);
   const StateSet next = current & states;
   if (next == current) return true;
   if (next.empty()) return false;
-  // next is a strict subset of current, so never "all": the triple is known from now on.
+  journal_.push_back({{a, b, c}, current});
+  write(a, b, c, next);
   const int x = std::min({a, b, c});
   const int z = std::max({a, b, c});
   const int y = a + b + c - x - z;
-  journal_.push_back({s.mask_index, stored.mask(), {x, y, z}});
-  masks_[s.mask_index] = (s.inverse ? inverse(next) : next).mask();
-  set_known(x, y, z);
-  queue_.push_back({a, b, c});
+  // ab:c is xy:z or its inverse when c = z, yz:x or zy:x when c = x, else zx:y or xz:y.
+  const unsigned which = c == z ? 0U : (c == x ? 1U : 2U);
+  std::uint8_t& bits = pending_[qrm_triple_rank(x, y, z)];
+  if (bits == 0) queue_.push_back({x, y, z});
+  bits = static_cast<std::uint8_t>(bits | (1U << which));
+  return true;
+}
+
+bool RelationalMap::close_triple(const Triple& sorted, unsigned& changed) {
+  const auto [x, y, z] = sorted;
+  // m[0] = xy:z, m[1] = yz:x, m[2] = zx:y: L takes each to the next, R to the one before.
+  const std::array<Triple, 3> orders{{{x, y, z}, {y, z, x}, {z, x, y}}};
+  std::array<StateSet, 3> m{};
+  for (std::size_t w = 0; w < 3; ++w) m[w] = read(orders[w][0], orders[w][1], orders[w][2]);
+  const std::array<StateSet, 3> before = m;
+  for (bool again = true; again;) {
+    again = false;
+    for (std::size_t w = 0; w < 3; ++w) {
+      StateSet& next = m[(w + 1) % 3];
+      StateSet& previous = m[(w + 2) % 3];
+      const StateSet left = next & left_shift(m[w]);
+      const StateSet right = previous & right_shift(m[w]);
+      again = again || left != next || right != previous;
+      next = left;
+      previous = right;
+    }
+  }
+  for (std::size_t w = 0; w < 3; ++w) {
+    if (m[w].empty()) return false;
+  }
+  for (std::size_t w = 0; w < 3; ++w) {
+    if (m[w] == before[w]) continue;
+    journal_.push_back({orders[w], before[w]});
+    write(orders[w][0], orders[w][1], orders[w][2], m[w]);
+    changed |= 1U << w;
+  }
   return true;
 }
 
 const RelationalMap::Informative& RelationalMap::informative(StateSet x) {
-  const auto found = informative_.find(x.mask());
-  if (found != informative_.end()) return found->second;
+  const Mask key = x.mask();
+  // Fibonacci hashing: the top bits of the product spread the 20-bit masks over the slots.
+  InformativeSlot& slot = informative_[(key * 0x9E3779B1U) >> (32 - kInformativeBits)];
+  if (slot.key == key) return slot.value;
   Informative out{0, 0};
   for (State s = 1; s <= kStateCount; ++s) {
-    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= StateSet::Mask{1} << s;
-    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= StateSet::Mask{1} << s;
+    if (!(*table_)(x, StateSet{s}).is_all()) out.right |= Mask{1} << s;
+    if (!(*table_)(StateSet{s}, x).is_all()) out.left |= Mask{1} << s;
   }
-  return informative_.emplace(x.mask(), out).first->second;
+  slot = {key, out};
+  return slot.value;
 }
 
-bool RelationalMap::process(const Triple& t) {
-  const auto [a, b, c] = t;
-  const StateSet abc = read(a, b, c);
-  if (!restrict(b, c, a, left_shift(abc)) || !restrict(c, a, b, right_shift(abc))) return false;
-  const std::array<Triple, 6> orders{{{a, b, c}, {b, c, a}, {c, a, b}, {b, a, c}, {a, c, b}, {c, b, a}}};
+NEOPIPE_QRM_MAP_HOT int RelationalMap::scan_row(const Mask* row, Mask skip, int n) {
+  // Most values are "all" or hold a useless state, unpredictably: branch-free, the few that pass
+  // are listed without a mispredicted jump per landmark (out[found] is overwritten until one does).
+  int found = 0;
+  int* out = candidates_.data();
+  for (int d = 0; d < n; ++d) {
+    const Mask m = row[d];
+    out[found] = d;
+    found += static_cast<int>(m != StateSet::kAllMask && (m & skip) == 0);
+  }
+  return found;
+}
+
+bool RelationalMap::propagate_order(int p, int q, int r) {
   const CompositionTable& comp = *table_;
-  for (const auto& [p, q, r] : orders) {
-    const StateSet pqr = read(p, q, r);
-    if (pqr.is_all()) continue;  // comp(all, s) = comp(s, all) = all: nothing to learn
-    // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
-    // contains it), and likewise comp(dp:q, pqr): such compositions are skipped, and the order
-    // itself when none can be informative (relations are never empty).
-    const Informative& useful = informative(pqr);
-    const StateSet::Mask right_useless = StateSet::kAllMask & ~useful.right;
-    const StateSet::Mask left_useless = StateSet::kAllMask & ~useful.left;
-    if (useful.right == 0 && useful.left == 0) continue;
-    // Every d in increasing order, as a loop over all landmarks would, but only those for which
-    // qr:d or dp:q may be known: for the others both reads below are "all" and skipped. Within
-    // this loop the restrictions at d change the bits of {q, r} and {p, q} at d only, so a word
-    // read once is what the loop over all d would have found.
-    const Word* qr_known = known(q, r);
-    const Word* pq_known = known(p, q);
-    // A half that can learn nothing does not need its landmarks visited (the other half's reads
-    // are "all" there, and no restriction of the skipped half can make them known).
-    const Word qr_mask = useful.right != 0 ? ~Word{0} : 0;
-    const Word pq_mask = useful.left != 0 ? ~Word{0} : 0;
-    for (std::size_t w = 0; w < words_; ++w) {
-      for (Word bits = (qr_known[w] & qr_mask) | (pq_known[w] & pq_mask); bits != 0; bits &= bits - 1) {
-        const int d = static_cast<int>(w * kWordBits) + std::countr_zero(bits);
-        if (d == p || d == q || d == r) continue;
-        // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d.
-        const StateSet qrd = read(q, r, d);
-        if (!qrd.is_all() && (qrd.mask() & right_useless) == 0 && !restrict(p, q, d, comp(pqr, qrd))) return false;
-        // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r.
-        const StateSet dpq = read(d, p, q);
-        if (!dpq.is_all() && (dpq.mask() & left_useless) == 0 && !restrict(d, p, r, comp(dpq, pqr))) return false;
-      }
+  const StateSet pqr = read(p, q, r);
+  if (pqr.is_all()) return true;  // comp(all, s) = comp(s, all) = all: nothing to learn
+  // comp(pqr, qr:d) is "all" as soon as qr:d holds a state y with comp(pqr, {y}) = all (the union
+  // contains it), and likewise comp(dp:q, pqr): such compositions are skipped without composing.
+  const Informative& useful = informative(pqr);
+  const auto n = static_cast<int>(ids_.size());
+  // Neither half restricts a relation the other reads (they restrict pq:d and dp:r, and read qr:d
+  // and dp:q, d a fourth landmark), nor one it reads itself, so the halves run one after the other.
+  if (useful.right != 0) {
+    // AB:C = pq:r, BC:D = qr:d  ->  AB:D = pq:d. The row holds qr:d, or rq:d = I(qr:d) when r < q;
+    // I maps "all" to "all" and the useless states to I of them, so the row is tested as stored.
+    const bool flipped = r < q;
+    const Mask* qr = flipped ? row(r, q, 0) : row(q, r, 0);
+    const StateSet useless = StateSet::from_mask(StateSet::kAllMask & ~useful.right);
+    const Mask skip = (flipped ? inverse(useless) : useless).mask();
+    const int found = scan_row(qr, skip, n);
+    for (int c = 0; c < found; ++c) {
+      const int d = candidates_[static_cast<std::size_t>(c)];
+      if (d == p) continue;
+      const StateSet stored = StateSet::from_mask(qr[d]);
+      if (!restrict(p, q, d, comp(pqr, flipped ? inverse(stored) : stored))) return false;
+    }
+  }
+  if (useful.left != 0) {
+    // AB:C = dp:q, BC:D = pq:r  ->  AB:D = dp:r. The row holds dp:q (di:j of {p, q}) when p < q,
+    // else pd:q = I(dp:q) (jd:i of {q, p}).
+    const bool flipped = q < p;
+    const Mask* dp = flipped ? row(q, p, 1) : row(p, q, 2);
+    const StateSet useless = StateSet::from_mask(StateSet::kAllMask & ~useful.left);
+    const Mask skip = (flipped ? inverse(useless) : useless).mask();
+    const int found = scan_row(dp, skip, n);
+    for (int c = 0; c < found; ++c) {
+      const int d = candidates_[static_cast<std::size_t>(c)];
+      if (d == r) continue;
+      const StateSet stored = StateSet::from_mask(dp[d]);
+      if (!restrict(d, p, r, comp(flipped ? inverse(stored) : stored, pqr))) return false;
+    }
+  }
+  return true;
+}
+
+bool RelationalMap::process(const Triple& sorted) {
+  const auto [x, y, z] = sorted;
+  std::uint8_t& pending = pending_[qrm_triple_rank(x, y, z)];
+  unsigned changed = pending;
+  // Composition never restricts the triple it reads pq:r from (d is a fourth landmark), so nothing
+  // below queues this triple again: what the closure changes is composed in this visit.
+  pending = 0;
+  if (!close_triple(sorted, changed)) return false;
+  // Relation w is read by two orders, pq:r and qp:r = I(pq:r).
+  const std::array<std::array<Triple, 2>, 3> readers{
+      {{{{x, y, z}, {y, x, z}}}, {{{y, z, x}, {z, y, x}}}, {{{z, x, y}, {x, z, y}}}}};
+  for (std::size_t w = 0; w < 3; ++w) {
+    if ((changed & (1U << w)) == 0) continue;
+    for (const auto& [p, q, r] : readers[w]) {
+      if (!propagate_order(p, q, r)) return false;
     }
   }
   return true;
@@ -208,15 +271,12 @@ FuseOutcome RelationalMap::fuse(LandmarkId a, LandmarkId b, LandmarkId c, StateS
     consistent = process(t);
   }
   if (!consistent) {
+    // The triples still queued are abandoned with the measurement.
+    for (const Triple& t : queue_) pending_[qrm_triple_rank(t[0], t[1], t[2])] = 0;
     // Newest first, so a relation changed twice ends at its value before the measurement.
-    for (std::size_t n = journal_.size(); n-- > 0;) masks_[journal_[n].mask_index] = journal_[n].before;
-    // A triple all of whose relations are "all" again is unknown again.
-    for (const JournalEntry& e : journal_) {
-      const std::size_t first = e.mask_index - e.mask_index % 3;
-      if (masks_[first] == StateSet::kAllMask && masks_[first + 1] == StateSet::kAllMask &&
-          masks_[first + 2] == StateSet::kAllMask) {
-        clear_known(e.sorted[0], e.sorted[1], e.sorted[2]);
-      }
+    for (std::size_t e = journal_.size(); e-- > 0;) {
+      const auto& [p, q, r] = journal_[e].order;
+      write(p, q, r, journal_[e].before);
     }
     journal_.clear();
     queue_.clear();
