@@ -10,6 +10,12 @@
 #include "nav/nx/arrival.hpp"
 
 namespace neopipe::nav::nx {
+namespace {
+
+// Times a journey falls back on the edges it gave up on when no route is left without them.
+constexpr int kLastResorts = 8;
+
+}  // namespace
 
 const char* journey_ending_name(JourneyEnding e) {
   switch (e) {
@@ -52,9 +58,14 @@ NxJourney travel_to_place(Robot& robot, const LearnedMap& map, std::size_t start
     if (++failures[{leg.place, leg.slot}] >= c.failures_to_avoid) failed.insert({leg.place, leg.slot});
   };
   const int max_legs = 3 * static_cast<int>(map.size()) + 10;
+  int last_resorts = 0;
   while (at != goal) {
     if (j.legs >= max_legs) return end(JourneyEnding::leg_limit, "too many legs");
-    const std::vector<Leg> route = map.route(at, goal, failed);
+    std::vector<Leg> route = map.route(at, goal, failed);
+    // No way round the edges given up on: the map's edges are few (often a chain), and an edge that
+    // failed twice may still arrive (its far place is one where a climb sometimes stops short), so
+    // as a last resort it is tried again, a few times per journey.
+    if (route.empty() && !failed.empty() && last_resorts++ < kLastResorts) route = map.route(at, goal);
     if (route.empty()) {
       return end(j.detours > 0 ? JourneyEnding::lost : JourneyEnding::no_route,
                  j.detours > 0 ? "no route left around the edges that failed" : "the map has no route from here");
