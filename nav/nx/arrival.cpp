@@ -1,10 +1,17 @@
 #include "nav/nx/arrival.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "nav/nx/controls.hpp"
 
 namespace neopipe::nav::nx {
+namespace {
+
+// Places whose stored positions lie this close are one junction (see below).
+constexpr double kJunctionMm = 2;
+
+}  // namespace
 
 Arrival identify_arrival(const Robot& robot, const LearnedMap& map, const PlaceView& view,
                          std::optional<std::size_t> expected, std::optional<std::size_t> exclude) {
@@ -16,18 +23,32 @@ Arrival identify_arrival(const Robot& robot, const LearnedMap& map, const PlaceV
   const auto looks_like = [&](std::size_t q) {
     return map.could_be(q, view, c.match_tolerance, 2 * c.heading_tolerance_deg, 2);
   };
+  const bool expected_near =
+      expected && expected != exclude && std::find(near.begin(), near.end(), *expected) != near.end();
   Arrival a;
   for (const std::size_t q : near) {
     if (q == exclude || !looks_like(q)) continue;
     if (q == expected) return {q, true};
     if (!a.place) a.place = q;
   }
-  if (a.place) return a;
+  if (a.place) {
+    // Four nearly co-circular marbles make two vertices (places) within a mm or two, one junction
+    // of four edges: NX's plan may go on from the expected one.
+    if (expected_near && (map.place(*expected).position - map.place(*a.place).position).norm() <= kJunctionMm) {
+      return {expected, true};
+    }
+    return a;
+  }
+  if (expected_near) return {expected, true};  // where it should be, its headings blurred
   // The expected place by its description alone: where two chains of dead reckoning met (a loop
-  // closed), the stored positions of neighbours may disagree by more than the reach.
-  if (expected && *expected != exclude && looks_like(*expected)) return {expected, true};
+  // closed), the stored positions of neighbours may disagree by more than the reach, though not by
+  // much more.
+  if (expected && *expected != exclude && looks_like(*expected) &&
+      (map.place(*expected).position - robot.odometry()).norm() <= 3 * radius) {
+    return {expected, true};
+  }
   for (const std::size_t q : near) {
-    if (q != exclude) return {q, q == expected};
+    if (q != exclude) return {q, false};
   }
   return a;
 }

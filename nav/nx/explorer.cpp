@@ -165,7 +165,11 @@ class Exploration {
     if (run.ending == EdgeEnding::arrived && !went_nowhere) view = settled_view();
     const Arrival a = view ? identify_arrival(robot_, map_, *view, std::nullopt, p) : Arrival{};
     // The start itself, found again (an edge that turned back): not a place at the end of this edge.
-    const bool back_at_start = view && !a.place && identify_arrival(robot_, map_, *view, p).expected;
+    bool back_at_start = false;
+    if (view && !a.place) {
+      const auto near = map_.near(robot_.odometry(), robot_.position_radius(), *view, c.match_tolerance);
+      back_at_start = std::find(near.begin(), near.end(), p) != near.end();
+    }
     if (!view || back_at_start) {
       const SlotState state = run.ending == EdgeEnding::blocked ? SlotState::blocked : SlotState::open;
       map_.mark(p, slot, state);

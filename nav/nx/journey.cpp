@@ -13,7 +13,7 @@ namespace neopipe::nav::nx {
 namespace {
 
 // Times a journey falls back on the edges it gave up on when no route is left without them.
-constexpr int kLastResorts = 8;
+constexpr int kLastResorts = 16;
 
 }  // namespace
 
