@@ -72,8 +72,9 @@ TEST(NxRecognition, JourneysUnderRangeErrorMostlyReachTheGoal) {
   const auto plans = rig::draw_plans(system, world30().objects.size(), 40, 3);
   const rig::TrialsSummary t = rig::run_trials(system, plans, world30(), rig::JourneySettings{}, 2);
   ASSERT_EQ(t.run(), 40);
-  // Before: 12.7 % of 300 (docs/nx.md); now about 65 %.
-  EXPECT_GE(t.reached(), 20) << t.reached();
+  // Before: 12.7 % of 300 (docs/nx.md); now 28 of these 40 (16 without the approach to the goal
+  // marble).
+  EXPECT_GE(t.reached(), 22) << t.reached();
 }
 
 // Seen from a place about 25 mm off, the goal marble's surface point errs by a few mm under 10 %
