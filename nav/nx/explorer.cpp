@@ -263,6 +263,11 @@ class Exploration {
 
   bool climb_after_retrace(const EdgeRun& run) {
     if (retrace(robot_, run).ending == ClimbEnding::place) return true;
+    // Under range error a climb may run out of steps near the place: two more tries from where it
+    // stopped before NX counts itself lost.
+    for (int i = 0; i < 2; ++i) {
+      if (climb_to_place(robot_).ending == ClimbEnding::place) return true;
+    }
     lost_ = true;
     return false;
   }
