@@ -117,10 +117,6 @@ std::optional<Eigen::Vector2d> locate_marble(Robot& robot, double bearing_deg, i
   return best;
 }
 
-}  // namespace neopipe::nav::nx
-
-namespace neopipe::nav::nx {
-
 std::optional<Eigen::Vector2d> approach_marble(Robot& robot, double bearing_deg, double distance_mm, int reads) {
   const std::optional<Eigen::Vector2d> far = locate_marble(robot, bearing_deg, reads);
   if (!far) return far;
@@ -128,7 +124,7 @@ std::optional<Eigen::Vector2d> approach_marble(Robot& robot, double bearing_deg,
   const double keep = std::max(distance_mm, robot.config().clearance_mm + 1);
   // Straight toward the marble: from a place its two neighbours lie no nearer that line than it
   // does, so it stays the nearest marble all the way.
-  if (range > keep && range > 0 && !robot.move(*far * ((range - keep) / range))) return far;
+  if (range > keep && !robot.move(*far * ((range - keep) / range))) return far;
   const double seen = robot.compass_heading(*far);
   return locate_marble(robot, seen, reads);
 }

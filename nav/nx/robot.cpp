@@ -74,7 +74,6 @@ bool Robot::move(const Eigen::Vector2d& d) {
   if (ok) {
     travelled_ += d.norm();
     odometry_ += compass_vector(d);
-    odometry_travel_ += d.norm();
     ++odometry_moves_;
   } else {
     ++refused_;

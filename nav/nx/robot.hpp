@@ -85,15 +85,12 @@ class Robot {
   /// Dead reckoning: every move the arm made, turned into the compass frame by the heading last read
   /// (the tool never turns on purpose, so its heading drifts only by the arm's rotation error). NX
   /// anchors it to a place's stored position whenever it knows where it is, so it drifts only over
-  /// the way since (the arm's length error is a fraction of a percent).
+  /// the moves since (each repeated by the arm to about 0.05 mm: position_radius).
   [[nodiscard]] const Eigen::Vector2d& odometry() const { return odometry_; }
   void set_odometry(const Eigen::Vector2d& position) {
     odometry_ = position;
-    odometry_travel_ = 0;
     odometry_moves_ = 0;
   }
-  /// mm travelled since the odometry was last anchored (its error grows with it).
-  [[nodiscard]] double odometry_travel() const { return odometry_travel_; }
 
   /// The look at the robot's position that the last neighbours() started with.
   [[nodiscard]] const Scan& last_scan() const { return last_scan_; }
@@ -114,7 +111,6 @@ class Robot {
   NxConfig config_;
   double heading_deg_ = 0;
   Eigen::Vector2d odometry_ = Eigen::Vector2d::Zero();
-  double odometry_travel_ = 0;
   std::int64_t odometry_moves_ = 0;
   Scan last_scan_{};
   std::int64_t frames_ = 0;
