@@ -76,10 +76,10 @@ int nx_command(const CLI::App& /*nx*/, const NxArgs& a) {
   std::cout << fmt::format("NX explored {} ({} marbles), range error {}, seed {}: {}\n", a.world, world.objects.size(),
                            a.range_error, a.seed, e.report.ending)
             << fmt::format(
-                   "places {}, edges {} (open {}, blocked {}); matches {} confirmed, {} by description, {} "
-                   "refuted\n",
-                   e.report.places, e.report.edges, e.report.open_edges, e.report.blocked_edges,
-                   e.report.matches_confirmed, e.report.matches_unconfirmed, e.report.matches_rejected)
+                   "places {}, edges {} (open {}, blocked {}); arrivals at a known place {} ({} without a free "
+                   "edge)\n",
+                   e.report.places, e.report.edges, e.report.open_edges, e.report.blocked_edges, e.report.matches,
+                   e.report.arrivals_unlinked)
             << fmt::format("places to the true vertices: mean {:.3f} mm, max {:.3f} mm, {} of {} within 2 mm\n",
                            t["mean_place_error_mm"].get<double>(), t["max_place_error_mm"].get<double>(),
                            t["places_within_2mm"].get<std::int64_t>(), e.report.places)

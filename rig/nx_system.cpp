@@ -222,7 +222,8 @@ Travel NxSystem::travel(const Plan& plan, Equipment& equipment, Witness& witness
   nx::Robot robot(equipment.camera, *equipment.compass, equipment.arm, nx_config_for(settings_.range_error));
   nx::NxJourney j = nx::travel_to_place(robot, exploration_.map, p.start_place, p.goal_place);
   if (j.ending == nx::JourneyEnding::arrived) {
-    const auto offset = nx::locate_marble(robot, p.goal_bearing_deg, settings_.goal_reads);
+    const auto offset =
+        nx::approach_marble(robot, p.goal_bearing_deg, settings_.goal_approach_mm, settings_.goal_reads);
     if (offset) {
       witness.landmark_claimed(1, *offset);
     } else {
@@ -245,9 +246,8 @@ json nx_exploration_json(const NxExploration& e) {
           {"edges", r.edges},
           {"open_edges", r.open_edges},
           {"blocked_edges", r.blocked_edges},
-          {"matches_confirmed", r.matches_confirmed},
-          {"matches_unconfirmed", r.matches_unconfirmed},
-          {"matches_rejected", r.matches_rejected},
+          {"matches", r.matches},
+          {"arrivals_unlinked", r.arrivals_unlinked},
           {"moves", r.moves},
           {"frames", r.frames},
           {"travelled_mm", r.travelled_mm},

@@ -37,6 +37,8 @@ struct NxSettings {
   ArmErrors arm;              ///< the arm's errors while exploring
   nav::nx::ExploreSettings explore;
   int goal_reads = 32;  ///< frames per look when measuring the goal marble
+  /// NX approaches the goal marble to this gap before it claims it (a nearer look errs less in mm).
+  double goal_approach_mm = 18;
 };
 
 /// NX's control settings for a sensor with this relative error: exact finite differences without

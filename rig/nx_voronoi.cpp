@@ -98,11 +98,16 @@ VoronoiComparison compare_with_voronoi(const NxExploration& e, const VoronoiGrap
     c.place_errors.push_back(best);
     c.place_vertex.push_back(best_v);
     if (best <= match_radius_mm) {
+      if (found[best_v]) ++c.duplicate_places;
       found[best_v] = true;
       matched[p] = best_v;
     }
   }
   c.vertices_found = static_cast<std::size_t>(std::count(found.begin(), found.end(), true));
+  c.places = e.place_truth;
+  for (std::size_t p = 0; p < e.map.size() && p < e.place_truth.size(); ++p) {
+    c.odometry_errors.push_back((e.map.place(p).position - (e.place_truth[p] - e.start)).norm());
+  }
   std::set<std::pair<std::size_t, std::size_t>> true_edges(truth.edges.begin(), truth.edges.end());
   std::set<std::pair<std::size_t, std::size_t>> learned;
   for (std::size_t p = 0; p < e.map.size(); ++p) {
@@ -136,16 +141,31 @@ nlohmann::json voronoi_comparison_json(const VoronoiComparison& c) {
                                 ? 0
                                 : std::accumulate(c.place_errors.begin(), c.place_errors.end(), 0.0) /
                                       static_cast<double>(c.place_errors.size());
+  const double max_odometry =
+      c.odometry_errors.empty() ? 0 : *std::max_element(c.odometry_errors.begin(), c.odometry_errors.end());
+  nlohmann::json places = nlohmann::json::array();
+  for (const Eigen::Vector2d& p : c.places) places.push_back({p.x(), p.y()});
   const auto within = [&](double r) {
     return std::count_if(c.place_errors.begin(), c.place_errors.end(), [&](double d) { return d <= r; });
   };
-  return {{"match_radius_mm", c.match_radius_mm}, {"place_errors_mm", c.place_errors},
-          {"max_place_error_mm", max_error},      {"mean_place_error_mm", mean_error},
-          {"places_within_2mm", within(2)},       {"places_within_match_radius", within(c.match_radius_mm)},
-          {"true_vertices", c.true_vertices},     {"vertices_found", c.vertices_found},
-          {"true_edges", c.true_edges},           {"learned_edges", c.learned_edges},
-          {"edges_found", c.edges_found},         {"edges_wrong", c.edges_wrong},
-          {"edges_missed", c.edges_missed},       {"edges_too_narrow", c.edges_too_narrow}};
+  return {{"match_radius_mm", c.match_radius_mm},
+          {"place_errors_mm", c.place_errors},
+          {"max_place_error_mm", max_error},
+          {"mean_place_error_mm", mean_error},
+          {"places_within_2mm", within(2)},
+          {"places_within_match_radius", within(c.match_radius_mm)},
+          {"true_vertices", c.true_vertices},
+          {"vertices_found", c.vertices_found},
+          {"true_edges", c.true_edges},
+          {"learned_edges", c.learned_edges},
+          {"edges_found", c.edges_found},
+          {"edges_wrong", c.edges_wrong},
+          {"edges_missed", c.edges_missed},
+          {"edges_too_narrow", c.edges_too_narrow},
+          {"duplicate_places", c.duplicate_places},
+          {"places", places},
+          {"odometry_errors_mm", c.odometry_errors},
+          {"max_odometry_error_mm", max_odometry}};
 }
 
 }  // namespace neopipe::rig

@@ -40,6 +40,13 @@ struct VoronoiComparison {
   /// True edges with both ends found and room to pass (clearance >= 10 mm) that NX did not learn.
   std::size_t edges_missed = 0;
   std::size_t edges_too_narrow = 0;  ///< true edges with both ends found but clearance < 10 mm
+  /// Places within the match radius of a true vertex an earlier place already found (a known place
+  /// NX failed to recognise).
+  std::size_t duplicate_places = 0;
+  std::vector<Eigen::Vector2d> places;  ///< where each place really is (the harness's notes)
+  /// How far NX's dead-reckoned position of each place is from the truth (both taken relative to
+  /// where the exploration's odometry began), mm.
+  std::vector<double> odometry_errors;
 };
 
 VoronoiComparison compare_with_voronoi(const NxExploration& exploration, const VoronoiGraph& truth,

@@ -1,10 +1,14 @@
 #include "nav/nx/explorer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <utility>
+
+#include "nav/nx/arrival.hpp"
 
 namespace neopipe::nav::nx {
 
@@ -16,6 +20,8 @@ namespace {
 
 // Known edges that may fail to lead where the map says before the exploration gives up.
 constexpr int kMaxDetours = 50;
+// Times the known edges given up on are tried again when they cut the agenda off.
+constexpr int kMaxForgiving = 3;
 
 // The explorer's state across one run.
 class Exploration {
@@ -33,7 +39,14 @@ class Exploration {
     while (true) {
       if (map_.size() >= settings_.max_places) return finish("place budget");
       if (robot_.moves() >= settings_.max_moves) return finish("move budget");
-      const std::optional<Leg> next = nearest_unexplored();
+      std::optional<Leg> next = nearest_unexplored();
+      if (!next && !failed_.empty() && forgiven_++ < kMaxForgiving) {
+        // The edges given up on cut the rest of the agenda off: under noise they may have failed by
+        // chance, so they get another chance (a few times at most).
+        failed_.clear();
+        failures_.clear();
+        next = nearest_unexplored();
+      }
       if (!next) return finish("agenda empty");
       bool on_route = true;
       for (const Leg& leg : map_.route(at_, next->place, failed_)) {
@@ -54,11 +67,6 @@ class Exploration {
   }
 
  private:
-  struct Trip {
-    std::size_t place = 0;
-    int slot = 0;
-    EdgeRun out;
-  };
   struct Facing {
     tour::ViewId view = 0;
     double heading = 0;
@@ -75,7 +83,8 @@ class Exploration {
   }
 
   std::size_t new_place(const PlaceView& view) {
-    const std::size_t p = map_.add_place(view);
+    const std::size_t p = map_.add_place(view, robot_.odometry());
+    robot_.set_odometry(robot_.odometry());
     if (observer_ != nullptr) observer_->place_found(p);
     return p;
   }
@@ -124,62 +133,25 @@ class Exploration {
     tell_tour_departure(leg.place, leg.slot);
     robot_.read_heading();
     const EdgeRun run = follow_edge(robot_, s.heading_deg);
-    if (run.ending != EdgeEnding::arrived) {
-      avoid(leg.place, leg.slot);
-      if (climb_after_retrace(run)) at_ = leg.place;
+    std::optional<PlaceView> view;
+    if (run.ending == EdgeEnding::arrived) view = describe_place(robot_);
+    Arrival a = view ? identify_arrival(robot_, map_, *view, q) : Arrival{};
+    if (!a.place) a = climb_again_at(robot_, map_, q, 2);
+    if (a.expected) {
+      tell_tour_arrival(leg.place, leg.slot, q, qs, run);
+      stand_at(q);
+      return true;
+    }
+    if (a.place) {
+      // Somewhere else the map knows: re-localised there.
+      count_failure(leg);
+      stand_at(*a.place);
+      facing_ = {nx_view(at_, 0, false), map_.place(at_).slots.at(0).heading_deg};
       return false;
     }
-    const std::optional<PlaceView> view = describe_place(robot_);
-    const NxConfig& c = robot_.config();
-    if (!view) {
-      lost_ = true;
-      return false;
-    }
-    if (!map_.could_be(q, *view, c.match_tolerance, 2 * c.heading_tolerance_deg, 2)) {
-      // Somewhere else: the best-fitting known place, if any.
-      const std::vector<std::size_t> fits = map_.candidates(*view, c.match_tolerance, c.heading_tolerance_deg);
-      if (fits.empty()) {
-        // Nowhere known: back along the edge by dead reckoning, and avoid it from now on.
-        avoid(leg.place, leg.slot);
-        if (climb_after_retrace(run)) at_ = leg.place;
-      } else {
-        at_ = fits.front();
-        facing_ = {nx_view(at_, 0, false), map_.place(at_).slots.at(0).heading_deg};
-      }
-      return false;
-    }
-    tell_tour_arrival(leg.place, leg.slot, q, qs, run);
-    at_ = q;
-    return true;
-  }
-
-  // The return trip that tests "here is place q": along another explored edge of q to its known
-  // neighbour, then back. A trip that ends at a place unlike that neighbour refutes q; one that
-  // ends at no place proves nothing (the next edge is tried). nullopt: nothing could be tested.
-  std::optional<bool> test_match(std::size_t q, int arrival_slot) {
-    const NxConfig& c = robot_.config();
-    const auto& slots = map_.place(q).slots;
-    for (std::size_t k = 0; k < slots.size(); ++k) {
-      if (static_cast<int>(k) == arrival_slot || slots[k].state != SlotState::explored) continue;
-      const std::size_t r = slots[k].to_place;
-      robot_.read_heading();
-      const EdgeRun out = follow_edge(robot_, slots[k].heading_deg);
-      std::optional<PlaceView> there;
-      if (out.ending == EdgeEnding::arrived) there = describe_place(robot_);
-      const bool confirmed = there && map_.could_be(r, *there, c.match_tolerance, 2 * c.heading_tolerance_deg, 2);
-      bool back = false;
-      if (there) {
-        const auto [back_slot, off] = nearest_slot(*there, out.arrival_heading_deg + 180);
-        const EdgeRun home = follow_edge(robot_, there->slots[static_cast<std::size_t>(back_slot)]);
-        back = home.ending == EdgeEnding::arrived && (home.displacement + out.displacement).norm() < 4 * c.step_mm;
-        if (!back) retrace(robot_, home);
-      }
-      if (!back) retrace(robot_, out);
-      if (confirmed && back) trip_ = Trip{q, static_cast<int>(k), out};
-      if (!there || (confirmed && !back)) continue;  // inconclusive
-      return confirmed;
-    }
-    return std::nullopt;
+    // Nowhere known: back along the edge by dead reckoning.
+    back_to(leg, run);
+    return false;
   }
 
   void explore_slot(std::size_t p, int slot) {
@@ -190,66 +162,112 @@ class Exploration {
     const EdgeRun run = follow_edge(robot_, heading);
     const bool went_nowhere = run.displacement.norm() < 2 * c.step_mm;
     std::optional<PlaceView> view;
-    if (run.ending == EdgeEnding::arrived && !went_nowhere) view = describe_place(robot_);
-    if (!view) {
+    if (run.ending == EdgeEnding::arrived && !went_nowhere) view = settled_view();
+    const Arrival a = view ? identify_arrival(robot_, map_, *view, std::nullopt, p) : Arrival{};
+    // The start itself, found again (an edge that turned back): not a place at the end of this edge.
+    bool back_at_start = false;
+    if (view && !a.place) {
+      const auto near = map_.near(robot_.odometry(), robot_.position_radius(), *view, c.match_tolerance);
+      back_at_start = std::find(near.begin(), near.end(), p) != near.end();
+    }
+    if (!view || back_at_start) {
       const SlotState state = run.ending == EdgeEnding::blocked ? SlotState::blocked : SlotState::open;
       map_.mark(p, slot, state);
       ++(state == SlotState::blocked ? report_.blocked_edges : report_.open_edges);
-      if (climb_after_retrace(run)) at_ = p;
+      if (climb_after_retrace(run)) stand_at(p);
+      return;
+    }
+    if (a.place) {
+      const std::size_t q = *a.place;
+      ++report_.matches;
+      const int qs = free_slot_toward(q, p, slot, run.arrival_heading_deg + 180);
+      if (qs < 0) {
+        // q has no free edge this way: its headings or this edge are misread. Knowing where it
+        // stands matters more than the edge, which is given up.
+        ++report_.arrivals_unlinked;
+        map_.mark(p, slot, SlotState::open);
+      } else {
+        map_.link(p, slot, q, qs, run.length, run.dtheta_deg);
+        tell_tour_arrival(p, slot, q, qs, run);
+      }
+      stand_at(q);
       return;
     }
     const int arrival = nearest_slot(*view, run.arrival_heading_deg + 180).first;
-    for (const std::size_t q : map_.candidates(*view, c.match_tolerance, c.heading_tolerance_deg)) {
-      if (q == p) continue;
-      // q's slot toward where we came from must be free, or lead back to this very edge.
-      const int qs = nearest_slot(map_.place(q).view, run.arrival_heading_deg + 180).first;
-      const Slot& qslot = map_.place(q).slots.at(static_cast<std::size_t>(qs));
-      if (qslot.state == SlotState::explored && (qslot.to_place != p || qslot.to_slot != slot)) continue;
-      // (An open or blocked slot may be one that failed once: the edge just travelled says otherwise.)
-      const std::optional<bool> test = test_match(q, qs);
-      if (test.has_value() && !*test) {
-        ++report_.matches_rejected;
-        continue;
-      }
-      ++(test.has_value() ? report_.matches_confirmed : report_.matches_unconfirmed);
-      map_.link(p, slot, q, qs, run.length, run.dtheta_deg);
-      tell_tour_arrival(p, slot, q, qs, run);
-      at_ = q;
-      tell_tour_trip();
-      return;
-    }
     const std::size_t n = new_place(*view);
     map_.link(p, slot, n, arrival, run.length, run.dtheta_deg);
     tell_tour_arrival(p, slot, n, arrival, run);
     at_ = n;
   }
 
-  // The confirming return trip is part of the experience: TOUR hears (q, k) -> (r, its slot) and
-  // back, once the place it started from is known to be q.
-  void tell_tour_trip() {
-    if (!trip_) return;
-    const Trip t = *trip_;
-    trip_.reset();
-    const Slot& s = map_.place(t.place).slots.at(static_cast<std::size_t>(t.slot));
-    tell_tour_departure(t.place, t.slot);
-    tell_tour_arrival(t.place, t.slot, s.to_place, s.to_slot, t.out);
-    tell_tour_departure(s.to_place, s.to_slot);
-    EdgeRun back;
-    back.length = t.out.length;
-    back.dtheta_deg = -t.out.dtheta_deg;
-    back.arrival_heading_deg = wrap180(s.heading_deg + 180);
-    tell_tour_arrival(s.to_place, s.to_slot, t.place, t.slot, back);
+  // The place where the robot stands, described, once its three ranges agree: a climb may stop on
+  // its step limit off the vertex (a marble read from its neighbour's sector), and a place stored
+  // there would be mm off. One more climb settles most; nullopt when it does not.
+  std::optional<PlaceView> settled_view() {
+    const NxConfig& c = robot_.config();
+    const double allowed = 4 * c.place_tolerance_mm + 0.5 + 4 * c.range_error * 30 / std::sqrt(std::max(1, c.reads));
+    const auto settled = [&](const std::optional<PlaceView>& v) {
+      if (!v || v->marble_ranges.size() < 3) return false;
+      const auto [lo, hi] = std::minmax_element(v->marble_ranges.begin(), v->marble_ranges.end());
+      return *hi - *lo <= allowed;
+    };
+    std::optional<PlaceView> view = describe_place(robot_);
+    if (settled(view)) return view;
+    if (climb_to_place(robot_).ending != ClimbEnding::place) return std::nullopt;
+    view = describe_place(robot_);
+    return settled(view) ? view : std::nullopt;
   }
 
-  // A known edge that failed: neither direction is used again.
-  void avoid(std::size_t p, int slot) {
-    const Slot& s = map_.place(p).slots.at(static_cast<std::size_t>(slot));
-    failed_.insert({p, slot});
+  // The slot of known place q by which an edge just travelled from (p, slot) arrives: the one
+  // nearest `heading_deg` (within twice the heading tolerance) that is not explored toward another
+  // place; -1 when none.
+  int free_slot_toward(std::size_t q, std::size_t p, int slot, double heading_deg) const {
+    const double tolerance = 2 * robot_.config().heading_tolerance_deg;
+    const auto& slots = map_.place(q).slots;
+    int best = -1;
+    double best_off = tolerance;
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+      const Slot& s = slots[k];
+      if (s.state == SlotState::explored && (s.to_place != p || s.to_slot != slot)) continue;
+      const double off = std::abs(wrap180(s.heading_deg - heading_deg));
+      if (off <= best_off) {
+        best = static_cast<int>(k);
+        best_off = off;
+      }
+    }
+    return best;
+  }
+
+  // NX knows it stands at place p: its odometry is anchored there.
+  void stand_at(std::size_t p) {
+    at_ = p;
+    robot_.set_odometry(map_.place(p).position);
+  }
+
+  // Back from a known edge that did not arrive, by dead reckoning and a climb at its start.
+  void back_to(const Leg& leg, const EdgeRun& run) {
+    count_failure(leg);
+    if (climb_after_retrace(run)) stand_at(leg.place);
+  }
+
+  // A known edge that failed: under range error once may be chance; after
+  // config.failures_to_avoid failures neither direction is used again.
+  void count_failure(const Leg& leg) {
+    const Slot& s = map_.place(leg.place).slots.at(static_cast<std::size_t>(leg.slot));
+    const std::pair<std::size_t, int> edge{std::min(leg.place, s.to_place),
+                                           leg.place < s.to_place ? leg.slot : s.to_slot};
+    if (++failures_[edge] < robot_.config().failures_to_avoid) return;
+    failed_.insert({leg.place, leg.slot});
     failed_.insert({s.to_place, s.to_slot});
   }
 
   bool climb_after_retrace(const EdgeRun& run) {
     if (retrace(robot_, run).ending == ClimbEnding::place) return true;
+    // Under range error a climb may run out of steps near the place: two more tries from where it
+    // stopped before NX counts itself lost.
+    for (int i = 0; i < 2; ++i) {
+      if (climb_to_place(robot_).ending == ClimbEnding::place) return true;
+    }
     lost_ = true;
     return false;
   }
@@ -264,8 +282,9 @@ class Exploration {
   Facing facing_;
   bool lost_ = false;
   int detours_ = 0;
-  std::set<std::pair<std::size_t, int>> failed_;  ///< known edges that did not lead where expected
-  std::optional<Trip> trip_;
+  int forgiven_ = 0;
+  std::map<std::pair<std::size_t, int>, int> failures_;  ///< per edge (its lower place's end)
+  std::set<std::pair<std::size_t, int>> failed_;         ///< known edges avoided from now on
 };
 
 }  // namespace

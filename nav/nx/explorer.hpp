@@ -1,10 +1,9 @@
 #pragma once
 // NX's exploration (qualnav.md §9): from wherever it starts, it climbs to a place and keeps an agenda
 // of unexplored (place, edge) pairs. It travels by its map to the nearest pair, follows the edge
-// and describes the place it ends at. A place whose ranges agree within 10 % (and whose edge
-// headings agree) with a known place is a match hypothesis; a trip along another explored edge of
-// the known place to its known neighbour and back (a return trip) confirms it. When the known place
-// has no other explored edge yet, the description alone decides (counted as unconfirmed). Every
+// and describes the place it ends at. That is a known place when its dead reckoning, anchored at
+// every place it knows it stands at, puts one there (within Robot::position_radius) whose range
+// agrees within 10 %; else a new place, stored with the odometry's position. Every
 // travel and turn goes to TOUR as <view, action, view> (views: place, edge, and whether the robot
 // leaves by that edge or has just arrived by it).
 
@@ -42,9 +41,8 @@ struct ExploreReport {
   std::size_t edges = 0;
   int open_edges = 0;
   int blocked_edges = 0;
-  int matches_confirmed = 0;    ///< by a return trip
-  int matches_unconfirmed = 0;  ///< by the description alone
-  int matches_rejected = 0;     ///< hypotheses the trip refuted
+  int matches = 0;            ///< arrivals at a known place (by dead reckoning and range)
+  int arrivals_unlinked = 0;  ///< of those, where the known place had no free edge this way
   std::int64_t moves = 0;
   std::int64_t frames = 0;
   double travelled_mm = 0;

@@ -9,9 +9,10 @@
 
 namespace neopipe::nav::nx {
 
-std::size_t LearnedMap::add_place(const PlaceView& view) {
+std::size_t LearnedMap::add_place(const PlaceView& view, const Eigen::Vector2d& position) {
   LearnedPlace p;
   p.view = view;
+  p.position = position;
   for (const double h : view.slots) p.slots.push_back({h});
   places_.push_back(std::move(p));
   return places_.size() - 1;
@@ -50,6 +51,18 @@ bool LearnedMap::could_be(std::size_t p, const PlaceView& view, double tolerance
 bool LearnedMap::range_fits(std::size_t p, const PlaceView& view, double tolerance) const {
   const double known = places_.at(p).view.range;
   return std::abs(view.range - known) <= tolerance * known;
+}
+
+std::vector<std::size_t> LearnedMap::near(const Eigen::Vector2d& position, double radius_mm, const PlaceView& view,
+                                          double tolerance) const {
+  std::vector<std::size_t> out;
+  for (std::size_t p = 0; p < places_.size(); ++p) {
+    if ((places_[p].position - position).norm() <= radius_mm && range_fits(p, view, tolerance)) out.push_back(p);
+  }
+  std::stable_sort(out.begin(), out.end(), [&](std::size_t a, std::size_t b) {
+    return (places_[a].position - position).squaredNorm() < (places_[b].position - position).squaredNorm();
+  });
+  return out;
 }
 
 std::vector<std::size_t> LearnedMap::candidates(const PlaceView& view, double tolerance,

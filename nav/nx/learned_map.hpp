@@ -4,6 +4,7 @@
 // and compass Δθ), open (runs out of reach) or blocked (too close to a marble). Routes are shortest
 // by edge length over explored edges.
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <set>
 #include <utility>
@@ -27,6 +28,9 @@ struct Slot {
 struct LearnedPlace {
   PlaceView view;
   std::vector<Slot> slots;
+  /// Where NX's dead reckoning put it when it was found (compass frame, mm from where the
+  /// exploration's odometry began): only ever compared with NX's own odometry.
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
 };
 
 /// One step of a route: leave `place` by `slot`.
@@ -37,7 +41,7 @@ struct Leg {
 
 class LearnedMap {
  public:
-  std::size_t add_place(const PlaceView& view);
+  std::size_t add_place(const PlaceView& view, const Eigen::Vector2d& position = Eigen::Vector2d::Zero());
   /// Joins slot `ps` of place p and slot `qs` of place q by an edge travelled from p.
   void link(std::size_t p, int ps, std::size_t q, int qs, double length, double dtheta_deg);
   void mark(std::size_t p, int slot, SlotState state);
@@ -50,6 +54,10 @@ class LearnedMap {
                               std::size_t slots_to_agree = 0) const;
   /// Whether `view` could be place p by its range alone (within `tolerance`, a fraction).
   [[nodiscard]] bool range_fits(std::size_t p, const PlaceView& view, double tolerance) const;
+  /// The places within `radius_mm` of `position` whose range agrees with `view`'s within `tolerance`,
+  /// nearest first.
+  [[nodiscard]] std::vector<std::size_t> near(const Eigen::Vector2d& position, double radius_mm, const PlaceView& view,
+                                              double tolerance) const;
   /// Every place `view` could be, best range agreement first.
   [[nodiscard]] std::vector<std::size_t> candidates(const PlaceView& view, double tolerance,
                                                     double heading_tolerance_deg) const;

@@ -73,6 +73,8 @@ bool Robot::move(const Eigen::Vector2d& d) {
   const bool ok = arm_.move_relative(d.x(), d.y(), 0);
   if (ok) {
     travelled_ += d.norm();
+    odometry_ += compass_vector(d);
+    ++odometry_moves_;
   } else {
     ++refused_;
   }
@@ -133,6 +135,12 @@ double Robot::read_heading() {
 Eigen::Vector2d Robot::tool_direction(double compass_deg) const {
   const double a = (compass_deg - heading_deg_) * kNxDegree;
   return {std::cos(a), std::sin(a)};
+}
+
+Eigen::Vector2d Robot::compass_vector(const Eigen::Vector2d& tool_vector) const {
+  const double a = heading_deg_ * kNxDegree;
+  return {std::cos(a) * tool_vector.x() - std::sin(a) * tool_vector.y(),
+          std::sin(a) * tool_vector.x() + std::cos(a) * tool_vector.y()};
 }
 
 double Robot::compass_heading(const Eigen::Vector2d& tool_direction) const {

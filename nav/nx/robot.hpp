@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,13 @@ struct NxConfig {
   double clearance_mm = 11;           ///< never closer than this to a marble's surface (>= 10 mm, §2)
   double match_tolerance = 0.10;      ///< place matching: ranges agree within this fraction
   double heading_tolerance_deg = 15;  ///< place matching and slots: edge headings agree within this
+  /// Place matching by dead reckoning: a place is where the odometry says within this, plus
+  /// odometry_drift_mm times the square root of the moves made since the odometry was last anchored
+  /// at a known place (the arm repeats each move only to about 0.05 mm, whatever its length).
+  double position_tolerance_mm = 3;
+  double odometry_drift_mm = 0.25;
+  /// A known edge is avoided after this many failures (under range error one failure may be chance).
+  int failures_to_avoid = 2;
 };
 
 /// One look: the 16 sectors' ranges (0: nothing in range).
@@ -71,10 +79,26 @@ class Robot {
   /// A compass heading as a unit vector in the tool frame, and back.
   [[nodiscard]] Eigen::Vector2d tool_direction(double compass_deg) const;
   [[nodiscard]] double compass_heading(const Eigen::Vector2d& tool_direction) const;
+  /// A vector of the tool frame in the compass frame (x: compass 0°).
+  [[nodiscard]] Eigen::Vector2d compass_vector(const Eigen::Vector2d& tool_vector) const;
+
+  /// Dead reckoning: every move the arm made, turned into the compass frame by the heading last read
+  /// (the tool never turns on purpose, so its heading drifts only by the arm's rotation error). NX
+  /// anchors it to a place's stored position whenever it knows where it is, so it drifts only over
+  /// the moves since (each repeated by the arm to about 0.05 mm: position_radius).
+  [[nodiscard]] const Eigen::Vector2d& odometry() const { return odometry_; }
+  void set_odometry(const Eigen::Vector2d& position) {
+    odometry_ = position;
+    odometry_moves_ = 0;
+  }
 
   /// The look at the robot's position that the last neighbours() started with.
   [[nodiscard]] const Scan& last_scan() const { return last_scan_; }
   [[nodiscard]] const NxConfig& config() const { return config_; }
+  /// How far from the odometry a known place may lie and still be where NX stands.
+  [[nodiscard]] double position_radius() const {
+    return config_.position_tolerance_mm + config_.odometry_drift_mm * std::sqrt(static_cast<double>(odometry_moves_));
+  }
   [[nodiscard]] std::int64_t frames() const { return frames_; }
   [[nodiscard]] std::int64_t moves() const { return moves_; }
   [[nodiscard]] std::int64_t refused_moves() const { return refused_; }
@@ -86,6 +110,8 @@ class Robot {
   nav::Arm& arm_;
   NxConfig config_;
   double heading_deg_ = 0;
+  Eigen::Vector2d odometry_ = Eigen::Vector2d::Zero();
+  std::int64_t odometry_moves_ = 0;
   Scan last_scan_{};
   std::int64_t frames_ = 0;
   std::int64_t moves_ = 0;
