@@ -57,7 +57,8 @@ void write_qualnav_plot(const std::string& path, const sim::World& world, const 
   std::size_t region_moves = 0;
   if (report.regions.used) {
     region_moves = static_cast<std::size_t>(report.regions.steps);
-    const std::vector<qn::LandmarkId> ids = qn::region_landmarks(*plan.memory, plan.goal, settings.regions.landmarks);
+    const std::vector<qn::LandmarkId> ids =
+        qn::region_landmarks(*plan.memory, plan.goal, settings.regions.landmarks, settings.regions.min_range_mm);
     const double reach = world.size.norm();
     for (std::size_t i = 0; i < ids.size(); ++i) {
       for (std::size_t j = i + 1; j < ids.size(); ++j) {

@@ -9,6 +9,7 @@
 #include <any>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -139,6 +140,7 @@ TEST(QualnavSystem, RegionLevelGoalRateAtFiftyPercentRangeError) {
   js.seed = 4;
   const rig::TrialsSummary t = rig::run_trials(system, plans, w, js, 0);
   EXPECT_GE(t.reached(), 145) << t.reached() << " of 150";
+  std::printf("region level: %lld of 150 reached the goal\n", static_cast<long long>(t.reached()));
   int production_steps = 0;
   for (const rig::TrialRecord& r : t.trials) {
     const auto* report = std::any_cast<qn::NavigationReport>(&r.details);

@@ -61,6 +61,18 @@ std::optional<int> separating_count(const RegionNode& node, const std::vector<Si
   return differ;
 }
 
+// Whether the view can tell every LPB whose sign differs between `from` and `to`: entering `to` is
+// crossing those, and a crossing hidden from view is no crossing (a marble hiding another otherwise
+// let a region whose differences all involve the hidden one pass as entered).
+bool tells_crossings(const RegionNode& from, const RegionNode& to, const std::vector<Sighting>& seen) {
+  for (const auto& [pair, sign] : to.signs) {
+    const auto there = from.signs.find(pair);
+    if (there == from.signs.end() || there->second == sign) continue;
+    if (!sighting_bearing(seen, pair.first) || !sighting_bearing(seen, pair.second)) return false;
+  }
+  return true;
+}
+
 bool sees_all_of(const RegionNode& node, const std::vector<Sighting>& seen) {
   return std::all_of(node.signs.begin(), node.signs.end(), [&](const auto& entry) {
     return sighting_bearing(seen, entry.first.first) && sighting_bearing(seen, entry.first.second);
@@ -177,7 +189,7 @@ class RegionPhase {
 
 RegionPhaseEnding RegionPhase::run() {
   report_.regions.used = true;
-  const std::vector<LandmarkId> ids = region_landmarks(memory_, goal_, settings_.landmarks);
+  const std::vector<LandmarkId> ids = region_landmarks(memory_, goal_, settings_.landmarks, settings_.min_range_mm);
   const std::optional<std::size_t> goal_view = goal_node(memory_, goal_);
   if (!goal_view || ids.size() < 2) return end(RegionPhaseEnding::lost, "the memory holds no region of the goal");
   std::vector<RegionObservation> observations;
@@ -218,7 +230,9 @@ RegionPhaseEnding RegionPhase::run() {
     // Entered a later planned region (or overshot into one further on)?
     bool progressed = false;
     for (std::size_t k = plan->nodes.size(); k-- > at + 1;) {
-      if (separating_count(graph.nodes()[plan->nodes[k]], seen).value_or(1) == 0) {
+      const RegionNode& there = graph.nodes()[plan->nodes[k]];
+      if (separating_count(there, seen).value_or(1) == 0 &&
+          tells_crossings(graph.nodes()[plan->nodes[at]], there, seen)) {
         report_.regions.regions_crossed += static_cast<int>(k - at);
         at = k;
         progressed = true;
@@ -228,29 +242,38 @@ RegionPhaseEnding RegionPhase::run() {
     if (at + 1 >= plan->nodes.size()) return end(RegionPhaseEnding::goal_region, "");
     // The paper's shortcut: the furthest later region whose LPBs are all in view and whose
     // separating LPBs have a production; else the next region.
-    std::optional<RegionShortcut> way;
-    std::size_t aim = at + 1;
+    // The paper's shortcut: a later region beyond the one aimed at whose LPBs are all in view and whose
+    // separating LPBs have a production. The aim holds until it is reached (or a further one opens):
+    // re-aiming every step at whatever the view allows made the heading flicker between targets.
     std::map<LandmarkId, double> ranges;
     for (const ViewedLandmark& l : now.landmarks) ranges[l.id] = l.range;
-    for (std::size_t k = plan->nodes.size(); k-- > at + 2;) {
+    if (target <= at) target = at + 1;
+    std::optional<RegionShortcut> way;
+    for (std::size_t k = plan->nodes.size(); k-- > std::max(target, at + 1) + 1;) {
       const RegionNode& node = graph.nodes()[plan->nodes[k]];
       if (!sees_all_of(node, seen)) continue;
       RegionShortcut s = shortcut_to(node, seen, ranges);
       if (s.possible && s.production) {
         way = std::move(s);
-        aim = k;
+        target = k;
+        best_separating = std::numeric_limits<int>::max();
+        ++report_.regions.shortcuts;
         break;
       }
     }
+    std::size_t aim = target;
     if (!way) way = shortcut_to(told_part(graph.nodes()[plan->nodes[aim]], seen), seen, ranges);
-    if (aim > at + 1 && aim > target) ++report_.regions.shortcuts;
-    if (aim != target) {
-      target = aim;
-      best_separating = std::numeric_limits<int>::max();
+    if (!way->production && aim > at + 1) {
+      // The aim's production lapsed: cross into the next region meanwhile.
+      RegionShortcut next = shortcut_to(told_part(graph.nodes()[plan->nodes[at + 1]], seen), seen, ranges);
+      if (next.production) {
+        way = std::move(next);
+        aim = at + 1;
+      }
     }
     const int separating = static_cast<int>(way->separating.size());
     if (progressed || separating < best_separating) {
-      best_separating = std::min(best_separating, separating);
+      best_separating = separating;
       idle = 0;
     } else if (++idle >= settings_.stall_steps) {
       return end(RegionPhaseEnding::stalled, "the separating LPBs not fewer for " + std::to_string(idle) + " steps");
@@ -293,7 +316,7 @@ std::string_view region_phase_ending_name(RegionPhaseEnding e) {
   return names.at(static_cast<std::size_t>(e));
 }
 
-std::vector<LandmarkId> region_landmarks(const VisualMemory& memory, LandmarkId goal, int count) {
+std::vector<LandmarkId> region_landmarks(const VisualMemory& memory, LandmarkId goal, int count, double min_range_mm) {
   std::map<LandmarkId, double> nearest;
   for (const MemoryNode& n : memory.nodes()) {
     for (const ViewedLandmark& l : n.view.landmarks) {
@@ -303,7 +326,7 @@ std::vector<LandmarkId> region_landmarks(const VisualMemory& memory, LandmarkId 
   }
   std::vector<std::pair<double, LandmarkId>> by_range;
   for (const auto& [id, range] : nearest) {
-    if (id != goal) by_range.emplace_back(range, id);
+    if (id != goal && range >= min_range_mm) by_range.emplace_back(range, id);
   }
   std::sort(by_range.begin(), by_range.end());
   std::vector<LandmarkId> out;

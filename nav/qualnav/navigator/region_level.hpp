@@ -37,6 +37,10 @@ namespace neopipe::nav::qualnav {
 struct RegionLevelConfig {
   int landmarks = 7;     ///< the goal and the landmarks seen nearest along the memory
   int stall_steps = 10;  ///< steps without progress before the region phase is stalled
+  /// Landmarks the memory passed nearer than this (the start's marble, the route's near-misses) are
+  /// left out, the goal excepted: beside a marble a 10 mm step flips the sides of its LPBs back and
+  /// forth, and the steering chased those flips.
+  double min_range_mm = 30;
 };
 
 /// How the region phase ended.
@@ -51,8 +55,10 @@ enum class RegionPhaseEnding : std::uint8_t {
 std::string_view region_phase_ending_name(RegionPhaseEnding e);
 
 /// The landmarks of the region level: `goal` and the others by the smallest range estimate any
-/// remembered viewframe has of them, `count` in all (fewer when the memory sees fewer), ascending.
-std::vector<LandmarkId> region_landmarks(const VisualMemory& memory, LandmarkId goal, int count);
+/// remembered viewframe has of them, those under `min_range_mm` left out, `count` in all (fewer when
+/// the memory sees fewer), ascending.
+std::vector<LandmarkId> region_landmarks(const VisualMemory& memory, LandmarkId goal, int count,
+                                         double min_range_mm = 0);
 
 /// Navigates to `goal` starting at the region level. The report is the journey's whole (steps, path,
 /// turning, the ending of the viewframe level that finished it) with `regions` filled in. Never throws
