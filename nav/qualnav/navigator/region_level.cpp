@@ -158,7 +158,7 @@ class RegionPhase {
     last_move_ = *m;
     return true;
   }
-  // The remembered viewframe that stands for plan node `k`: the middle one of those in its region.
+  // The remembered viewframe that stands for `region`: the middle one of those recorded in it.
   std::size_t representative(std::size_t region) const {
     std::vector<std::size_t> in;
     for (std::size_t i = 0; i < graph_->node_of_observation().size(); ++i) {
@@ -240,8 +240,6 @@ RegionPhaseEnding RegionPhase::run() {
       }
     }
     if (at + 1 >= plan->nodes.size()) return end(RegionPhaseEnding::goal_region, "");
-    // The paper's shortcut: the furthest later region whose LPBs are all in view and whose
-    // separating LPBs have a production; else the next region.
     // The paper's shortcut: a later region beyond the one aimed at whose LPBs are all in view and whose
     // separating LPBs have a production. The aim holds until it is reached (or a further one opens):
     // re-aiming every step at whatever the view allows made the heading flicker between targets.

@@ -9,15 +9,15 @@
 // route into regions a few millimetres wide and every step would cross several.
 //
 // Each step: look; the robot is in a planned region when no LPB of that region that it can see has
-// the other sign (an LPB out of view cannot be told); it advances to the furthest such region of
-// the plan. It then heads straight for the furthest later region whose LPBs are all in view and
-// whose separating LPBs have a production other than "–" (the paper's shortcut), else for the next
-// region, steering by the production's orientation heading (b along the bisector, l and r beside P
-// or Q, a at P). Where the next region's production is "–" or undefined (no 180° gap among the
-// separating landmarks), one step of the viewframe heading to a remembered viewframe of that
-// region takes its place. In the goal's region, or with the goal's range interval within the
-// approach distance, the viewframe level (navigator.hpp) finishes: viewframe headings to the goal's
-// viewframe, then the goal's a heading and the parallax stop.
+// the other sign (an LPB out of view cannot be told), the LPBs the plan crosses into it all seen; it
+// advances to the furthest such region of the plan. It heads for the furthest later region whose
+// LPBs are all in view and whose separating LPBs have a production other than "–" (the paper's
+// shortcut; the aim holds until reached or a further one opens), else for the next region, steering by the production's
+// orientation heading (b along the bisector, l and r beside P or Q, a at P). Where the next region's production is "–"
+// or undefined (no 180° gap among the separating landmarks), one step of the viewframe heading to a remembered
+// viewframe of that region takes its place. In the goal's region, or with the goal's range interval within the approach
+// distance, the viewframe level (navigator.hpp) finishes: viewframe headings to the goal's viewframe, then the goal's a
+// heading and the parallax stop.
 //
 // Failures fall back a level (§1): `lost` (the view relates to no remembered region, or no
 // viewframe heading to the target region), `stalled` (no region entered and the separating LPBs not
