@@ -367,6 +367,12 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
                   "(via a point off to the side, leaving shortcuts to find)")
       ->check(CLI::IsMember({"shortest", "detour"}))
       ->capture_default_str();
+  cmd->add_option("--level", a.level,
+                  "qualnav: the level a journey starts at: viewframes (viewframe headings all the way) or regions "
+                  "(orientation regions of the memory crossed by the productions' headings, the viewframe level "
+                  "finishing; qualnav.md §7)")
+      ->check(CLI::IsMember({"viewframes", "regions"}))
+      ->capture_default_str();
   cmd->add_option("--video", a.video, "One journey: the onboard view with the blobs marked (.mp4, .avi, .mkv)");
   return cmd;
 }
@@ -379,6 +385,7 @@ int nav_command(const NavArgs& a) {
   if (a.taught_route != NavArgs{}.taught_route && a.system != "qualnav") {
     throw UsageError{"--taught-route goes with --system qualnav"};
   }
+  if (a.level != NavArgs{}.level && a.system != "qualnav") throw UsageError{"--level goes with --system qualnav"};
   if (a.system == "qrm") return qrm_nav_command(a);
   if (a.system == "qualnav") return qualnav_nav_command(a);
   if (a.system == "nx") return nx_nav_command(a);

@@ -48,6 +48,7 @@ struct NavArgs {
   std::optional<double> range_error;
   std::int64_t places = 40;               ///< nx: the exploration's budget of places
   std::string taught_route = "shortest";  ///< qualnav: shortest | detour
+  std::string level = "viewframes";       ///< qualnav: the level journeys start at, viewframes | regions
 };
 
 CLI::App* add_nav_command(CLI::App& app, NavArgs& args);

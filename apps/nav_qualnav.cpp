@@ -35,9 +35,12 @@ namespace qn = nav::qualnav;
 using nlohmann::json;
 
 // The world, the taught route (blue) with its recorded viewframes (blue dots), the tool's true
-// track (red) and the goal held (green ring): a PNG.
+// track (red) and the goal held (green ring): a PNG. A region-level journey also draws the LPB lines
+// of its region landmarks (grey: the arrangement of orientation regions, landmarks ringed) and its
+// region phase's track in orange.
 void write_qualnav_plot(const std::string& path, const sim::World& world, const rig::QualnavPlan& plan,
-                        const rig::JourneyResult& r) {
+                        const rig::JourneyResult& r, const qn::NavigationReport& report,
+                        const rig::QualnavSettings& settings) {
   constexpr double kScale = 2;  // px per mm
   const cv::Size size(static_cast<int>(world.size.x() * kScale), static_cast<int>(world.size.y() * kScale));
   cv::Mat img(size, CV_8UC3, cv::Scalar(255, 255, 255));
@@ -51,8 +54,26 @@ void write_qualnav_plot(const std::string& path, const sim::World& world, const 
   for (const Eigen::Vector2d& p : rig::sample_route(plan.route, qn::kViewpathSpacingMm)) {
     cv::circle(img, px(p), 3, cv::Scalar(220, 120, 0), cv::FILLED, cv::LINE_AA);
   }
+  std::size_t region_moves = 0;
+  if (report.regions.used) {
+    region_moves = static_cast<std::size_t>(report.regions.steps);
+    const std::vector<qn::LandmarkId> ids =
+        qn::region_landmarks(*plan.memory, plan.goal, settings.regions.landmarks, settings.regions.min_range_mm);
+    const double reach = world.size.norm();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      for (std::size_t j = i + 1; j < ids.size(); ++j) {
+        const Eigen::Vector2d a = world.objects[ids[i]];
+        const Eigen::Vector2d d = (world.objects[ids[j]] - a).normalized();
+        cv::line(img, px(a - reach * d), px(a + reach * d), cv::Scalar(175, 175, 175), 1, cv::LINE_AA);
+      }
+    }
+    for (const qn::LandmarkId id : ids) {
+      cv::circle(img, px(world.objects[id]), 7, cv::Scalar(0, 140, 255), 2, cv::LINE_AA);
+    }
+  }
   for (std::size_t i = 1; i < r.arm.track.size(); ++i) {
-    cv::line(img, px(r.arm.track[i - 1]), px(r.arm.track[i]), cv::Scalar(0, 0, 220), 1, cv::LINE_AA);
+    const cv::Scalar colour = i <= region_moves ? cv::Scalar(0, 140, 255) : cv::Scalar(0, 0, 220);
+    cv::line(img, px(r.arm.track[i - 1]), px(r.arm.track[i]), colour, 2, cv::LINE_AA);
   }
   for (std::size_t i = 0; i < world.objects.size(); ++i) {
     cv::circle(img, px(world.objects[i]), static_cast<int>(world.marble_diameter * kScale / 2), cv::Scalar(0, 0, 0),
@@ -78,7 +99,7 @@ int qualnav_one_journey(const NavArgs& a, const sim::World& world, const rig::Qu
   const rig::JourneyResult r = rig::run_journey(system, *plan, world, journey);
   const qn::NavigationReport& report = *rig::qualnav_report(r.travel);
   const rig::QualnavPlan& p = rig::qualnav_plan(*plan);
-  if (!a.plot.empty()) write_qualnav_plot(a.plot, world, p, r);
+  if (!a.plot.empty()) write_qualnav_plot(a.plot, world, p, r, report, system.settings());
   const json held = held_landmarks_json(r);
   const double taught = rig::route_length(p.route);
   if (a.json) {
@@ -108,6 +129,8 @@ int qualnav_one_journey(const NavArgs& a, const sim::World& world, const rig::Qu
                       {"arm_travel", r.arm.true_travel},
                       {"refused_moves", r.arm.refused_moves},
                       {"range_error", qualnav_range_error(a)},
+                      {"level", rig::qualnav_level_name(system.settings().level)},
+                      {"regions", report.regions.used ? rig::qualnav_region_json(report.regions) : json(nullptr)},
                       {"seed", a.seed}}
                      .dump()
               << '\n';
@@ -125,6 +148,14 @@ int qualnav_one_journey(const NavArgs& a, const sim::World& world, const rig::Qu
                    "path {:.1f} mm turning {:.0f} deg (every 20 mm); arm travel {:.1f} mm\n", report.path_mm,
                    rig::route_turning(rig::sample_route(report.path, qn::kViewpathSpacingMm)) * 180 / std::numbers::pi,
                    r.arm.true_travel);
+  if (report.regions.used) {
+    const qn::RegionLevelCounters& c = report.regions;
+    std::cout << fmt::format(
+        "region level: {} regions planned, {} crossed, {} shortcuts, {} production steps, {} fallback steps; "
+        "phase ended {}{}\n",
+        c.plan_regions, c.regions_crossed, c.shortcuts, c.production_steps, c.fallback_steps, c.ending,
+        c.fallbacks > 0 ? " (fell back to the viewframe level)" : "");
+  }
   return kExitOk;
 }
 
@@ -148,16 +179,26 @@ int qualnav_trials(const NavArgs& a, const sim::World& world, const rig::Qualnav
   }
   const std::int64_t n = std::max<std::int64_t>(t.run(), 1);
   std::cout << fmt::format(
-      "{} journeys on {} ({} objects), system qualnav (range error {}), move {} /mm, rotation {} deg/mm, seed {}\n\n"
+      "{} journeys on {} ({} objects), system qualnav (level {}, range error {}), move {} /mm, rotation {} deg/mm, "
+      "seed {}\n\n"
       "{:<20} {:>7} {:>8}  {}\n",
-      n, a.world, world.objects.size(), qualnav_range_error(a), a.sigma_move, a.sigma_rot, a.seed, "OUTCOME", "COUNT",
-      "RATE", "95% CI");
+      n, a.world, world.objects.size(), a.level, qualnav_range_error(a), a.sigma_move, a.sigma_rot, a.seed, "OUTCOME",
+      "COUNT", "RATE", "95% CI");
   print_outcome_rows(std::cout, t, n);
   std::cout << "\nthe navigator's endings:";
   for (const auto& [name, count] : j["qualnav"]["endings"].items()) {
     std::cout << fmt::format(" {} {}", name, count.get<std::int64_t>());
   }
   const json& q = j["qualnav"];
+  if (q.contains("regions")) {
+    const json& g = q["regions"];
+    std::cout << fmt::format(
+        "\nregion level: {} regions crossed, {} shortcuts, {} production steps, {} fallback steps, {} fallbacks to "
+        "the viewframe level; phase endings {}",
+        g["regions_crossed"].get<std::int64_t>(), g["shortcuts"].get<std::int64_t>(),
+        g["production_steps"].get<std::int64_t>(), g["fallback_steps"].get<std::int64_t>(),
+        g["fallbacks"].get<std::int64_t>(), g["phase_endings"].dump());
+  }
   std::cout << fmt::format(
       "\narrived: path {:.0f} mm against taught {:.0f} mm; shorter in {}, smoother in {} of {}\n"
       "frames {} in {:.2f} s; mean arm travel {:.1f} mm\n",
@@ -199,6 +240,7 @@ int qualnav_nav_command(const NavArgs& a) {
   settings.seed = a.seed;
   settings.sensing.range_error = qualnav_range_error(a);
   settings.detour = a.taught_route == "detour";
+  settings.level = a.level == "regions" ? rig::QualnavLevel::regions : rig::QualnavLevel::viewframes;
   const rig::QualnavSystem system(world, settings);
   return a.from ? qualnav_one_journey(a, world, system) : qualnav_trials(a, world, system);
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
@@ -58,6 +59,22 @@ class GoalRelay final : public qn::GoalObserver {
 };
 
 }  // namespace
+
+std::string_view qualnav_level_name(QualnavLevel level) {
+  return level == QualnavLevel::regions ? "regions" : "viewframes";
+}
+
+json qualnav_region_json(const qn::RegionLevelCounters& c) {
+  return {{"ending", c.ending},
+          {"plan_regions", c.plan_regions},
+          {"regions_crossed", c.regions_crossed},
+          {"shortcuts", c.shortcuts},
+          {"production_steps", c.production_steps},
+          {"fallback_steps", c.fallback_steps},
+          {"fallbacks", c.fallbacks},
+          {"steps", c.steps},
+          {"path_mm", c.path_mm}};
+}
 
 const QualnavPlan& qualnav_plan(const Plan& plan) {
   const auto* p = dynamic_cast<const QualnavPlan*>(&plan);
@@ -137,7 +154,11 @@ Travel QualnavSystem::travel(const Plan& plan, Equipment& equipment, Witness& wi
       nav::PanoramaModel{world_.marble_diameter / 2, settings_.sensing.bearing_noise_deg}, qualnav_interval_factor(e),
       [&](std::vector<nav::PanoramaSighting>& s) { apply_range_error(s, e, [&] { return range_noise.uniform(); }); });
   GoalRelay relay(plan, witness);
-  qn::NavigationReport report = qn::navigate(*p.memory, plan.goal, eye, equipment.arm, settings_.navigator, &relay);
+  qn::NavigationReport report =
+      settings_.level == QualnavLevel::regions
+          ? qn::navigate_regions(*p.memory, plan.goal, eye, equipment.arm, settings_.navigator, settings_.regions,
+                                 &relay)
+          : qn::navigate(*p.memory, plan.goal, eye, equipment.arm, settings_.navigator, &relay);
   t.ending = qualnav_ending(report.ending);
   t.reason = report.reason;
   t.recoveries = report.shortcuts;  // leaving the remembered path for a shortcut
@@ -164,6 +185,8 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
   std::int64_t arrived = 0;
   double executed = 0;  // path moves of the journeys that arrived
   double taught_arrived = 0;
+  qn::RegionLevelCounters regions;  // summed over the journeys
+  std::map<std::string, std::int64_t> region_endings;
   json journeys = json::array();
   for (std::size_t i = 0; i < t.trials.size(); ++i) {
     const TrialRecord& r = t.trials[i];
@@ -210,6 +233,19 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
       j["commanded_travel"] = report->commanded_mm;
       j["path_turning_deg"] = path_turn * 180 / std::numbers::pi;
       j["path_mm"] = report->path_mm;
+      if (report->regions.used) {
+        const qn::RegionLevelCounters& c = report->regions;
+        j["regions"] = qualnav_region_json(c);
+        ++region_endings[c.ending];
+        regions.plan_regions += c.plan_regions;
+        regions.regions_crossed += c.regions_crossed;
+        regions.shortcuts += c.shortcuts;
+        regions.production_steps += c.production_steps;
+        regions.fallback_steps += c.fallback_steps;
+        regions.fallbacks += c.fallbacks;
+        regions.steps += c.steps;
+        regions.path_mm += c.path_mm;
+      }
     }
     journeys.push_back(std::move(j));
   }
@@ -235,7 +271,15 @@ json qualnav_trials_json(const QualnavSystem& system, const std::vector<std::uni
                        {"arrived_taught_route_mm", taught_arrived},
                        {"arrived_path_mm", executed},
                        {"arrived_shorter_than_taught", arrived_shorter},
-                       {"arrived_smoother_than_taught", arrived_smoother}};
+                       {"arrived_smoother_than_taught", arrived_smoother},
+                       {"level", qualnav_level_name(s.level)}};
+  if (s.level == QualnavLevel::regions) {
+    json r = qualnav_region_json(regions);
+    r.erase("ending");
+    r["landmarks"] = s.regions.landmarks;
+    r["phase_endings"] = region_endings;
+    report["qualnav"]["regions"] = std::move(r);
+  }
   report["journeys"] = std::move(journeys);
   return report;
 }

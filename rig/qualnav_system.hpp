@@ -15,16 +15,23 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nav/qualnav/metric/visual_memory.hpp"
 #include "nav/qualnav/navigator/navigator.hpp"
+#include "nav/qualnav/navigator/region_level.hpp"
 #include "rig/navigation_system.hpp"
 #include "rig/qualnav_teaching.hpp"
 #include "rig/trials.hpp"
 #include "sim/world.hpp"
 
 namespace neopipe::rig {
+
+/// The level a journey starts at (qualnav.md §1): viewframe headings all the way, or the orientation
+/// regions first (nav/qualnav/navigator/region_level.hpp), the viewframe level finishing.
+enum class QualnavLevel : std::uint8_t { viewframes, regions };
+std::string_view qualnav_level_name(QualnavLevel level);
 
 struct QualnavSettings {
   QualnavSensing sensing;          ///< range error e (0.5: the papers' 50 %) and bearing noise
@@ -33,6 +40,8 @@ struct QualnavSettings {
   double route_end_mm = 20;        ///< the taught route ends this far from the goal's centre
   bool detour = false;             ///< teach roundabout routes (teach_detour) instead of the shortest
   nav::qualnav::NavigatorConfig navigator;
+  QualnavLevel level = QualnavLevel::viewframes;
+  nav::qualnav::RegionLevelConfig regions;  ///< the region level's, when level is regions
 };
 
 /// A Qualnav journey: entries {start, goal}; the memory recorded along the taught route.
@@ -68,6 +77,9 @@ class QualnavSystem final : public NavigationSystem {
 
 /// The navigator's report of a journey run by a QualnavSystem, or null.
 const nav::qualnav::NavigationReport* qualnav_report(const Travel& travel);
+
+/// What the region level did in a journey (its counters), as the JSON of one journey and of trials write it.
+nlohmann::json qualnav_region_json(const nav::qualnav::RegionLevelCounters& counters);
 
 /// The trials JSON of `neopipe nav --system qualnav --trials N --json`: the keys of the other systems'
 /// (trials, outcomes, rates, reached_goal, reached_goal_rate, reached_goal_ci95, ...) and Qualnav's

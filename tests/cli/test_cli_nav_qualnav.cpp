@@ -111,3 +111,44 @@ TEST_F(NavQualnavCli, BadInputIsOneLine) {
       run_neopipe({"nav", "--system", "qrm", "--world", world(), "--trials", "2", "--range-error", "1"}), 2,
       "--system qualnav");
 }
+
+TEST_F(NavQualnavCli, RegionLevelRunsOneJourneyAndTrialsWithItsCounters) {
+  const auto one =
+      run_neopipe(qualnav({"--from", "0", "--to", "8", "--level", "regions", "--json", "--plot", file("regions.png")}));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const json j = json::parse(one.out);
+  EXPECT_EQ(j["level"], "regions");
+  EXPECT_TRUE(j["reached_goal"].get<bool>()) << j.dump();
+  ASSERT_TRUE(j["regions"].is_object()) << j.dump();
+  for (const char* key : {"ending", "plan_regions", "regions_crossed", "shortcuts", "production_steps",
+                          "fallback_steps", "fallbacks", "steps", "path_mm"}) {
+    EXPECT_TRUE(j["regions"].contains(key)) << key;
+  }
+  EXPECT_GT(j["regions"]["production_steps"].get<int>(), 0) << j.dump();
+  EXPECT_TRUE(std::filesystem::exists(file("regions.png")));
+  const auto plain = run_neopipe(qualnav({"--from", "0", "--to", "8", "--json"}));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(json::parse(plain.out)["level"], "viewframes");
+  EXPECT_TRUE(json::parse(plain.out)["regions"].is_null());
+
+  auto a = json::parse(run_neopipe(qualnav({"--trials", "3", "--level", "regions", "--threads", "1", "--json"})).out);
+  auto b = json::parse(run_neopipe(qualnav({"--trials", "3", "--level", "regions", "--threads", "2", "--json"})).out);
+  EXPECT_EQ(a["qualnav"]["level"], "regions");
+  ASSERT_TRUE(a["qualnav"].contains("regions")) << a.dump();
+  for (const char* key : {"regions_crossed", "shortcuts", "fallbacks", "fallback_steps", "phase_endings"}) {
+    EXPECT_TRUE(a["qualnav"]["regions"].contains(key)) << key;
+  }
+  a.erase("seconds");
+  b.erase("seconds");
+  EXPECT_EQ(a, b);
+  const auto table = run_neopipe(qualnav({"--trials", "2", "--level", "regions"}));
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_NE(table.out.find("region level:"), std::string::npos) << table.out;
+}
+
+TEST_F(NavQualnavCli, BadLevelIsOneLine) {
+  expect_one_line_error(run_neopipe(qualnav({"--trials", "2", "--level", "hills"})), 2, "--level");
+  expect_one_line_error(
+      run_neopipe({"nav", "--system", "qrm", "--world", world(), "--trials", "2", "--level", "regions"}), 2,
+      "--level goes with --system qualnav");
+}

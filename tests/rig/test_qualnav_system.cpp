@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <any>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -124,6 +126,29 @@ TEST(QualnavSystem, GoalRateAtFiftyPercentRangeError) {
   js.seed = 4;
   const rig::TrialsSummary t = rig::run_trials(system, plans, w, js, 0);
   EXPECT_GE(t.reached(), 145) << t.reached() << " of 150";
+}
+
+// The same at the region level (--level regions): the orientation regions crossed by the
+// productions' headings, the viewframe level finishing. The same threshold and power as above.
+TEST(QualnavSystem, RegionLevelGoalRateAtFiftyPercentRangeError) {
+  const sim::World w = small_world();
+  rig::QualnavSettings settings;
+  settings.level = rig::QualnavLevel::regions;
+  const rig::QualnavSystem system(w, settings);
+  const auto plans = rig::draw_plans(system, w.objects.size(), 150, 21);
+  rig::JourneySettings js;
+  js.seed = 4;
+  const rig::TrialsSummary t = rig::run_trials(system, plans, w, js, 0);
+  EXPECT_GE(t.reached(), 145) << t.reached() << " of 150";
+  std::printf("region level: %lld of 150 reached the goal\n", static_cast<long long>(t.reached()));
+  int production_steps = 0;
+  for (const rig::TrialRecord& r : t.trials) {
+    const auto* report = std::any_cast<qn::NavigationReport>(&r.details);
+    ASSERT_NE(report, nullptr);
+    EXPECT_TRUE(report->regions.used);
+    production_steps += report->regions.production_steps;
+  }
+  EXPECT_GT(production_steps, 150) << "the region level steers by the productions";
 }
 
 }  // namespace

@@ -85,6 +85,21 @@ class GoalObserver {
   GoalObserver& operator=(const GoalObserver&) = default;
 };
 
+/// What the orientation-region level (region_level.hpp) did before the viewframe level finished the
+/// journey; all zero when the journey ran at the viewframe level only.
+struct RegionLevelCounters {
+  bool used = false;         ///< the journey started at the region level
+  std::string ending;        ///< how the region phase ended (region_phase_ending_name)
+  int plan_regions = 0;      ///< regions of the first region plan, start and goal included
+  int regions_crossed = 0;   ///< planned regions the robot entered (a shortcut counts every region skipped)
+  int shortcuts = 0;         ///< heads straight to a later planned region (the paper's shortcut)
+  int production_steps = 0;  ///< steps steered by an orientation heading of the productions
+  int fallback_steps = 0;    ///< steps by a viewframe heading where the production was "–" or undefined
+  int fallbacks = 0;         ///< 1 when the region phase failed (lost, stalled, blocked): viewframe level
+  int steps = 0;             ///< moves of the region phase
+  double path_mm = 0;        ///< path moves of the region phase
+};
+
 struct NavigationReport {
   NavigationEnding ending = NavigationEnding::arrived;
   std::string reason;
@@ -105,6 +120,7 @@ struct NavigationReport {
   Eigen::Vector2d claimed_offset = Eigen::Vector2d::Zero();
   /// Where the path moves took the tool by dead reckoning, in the start's tool frame, start first.
   std::vector<Eigen::Vector2d> path;
+  RegionLevelCounters regions;
 };
 
 /// The memory node nearest the goal landmark: the viewframe that sees it at the smallest range
