@@ -11,6 +11,7 @@
 
 #include "nav/qualnav/metric/localization.hpp"
 #include "nav/qualnav/metric/viewframe_heading.hpp"
+#include "nav/qualnav/navigator/range_guard.hpp"
 
 namespace neopipe::nav::qualnav {
 namespace {
@@ -126,33 +127,18 @@ class Journey {
   // A look, and its guard: the same landmarks with range bounds fused over the looks so far.
   Viewframe look() {
     Viewframe v = eye_.look();
-    guard_ = v;
-    for (ViewedLandmark& l : guard_.landmarks) {
-      auto [it, fresh] = bounds_.try_emplace(l.id, RangeBound{l.range_lo, l.range_hi, odometer_});
-      if (!fresh) {
-        // Since the last look the tool moved at most `moved` (odometry plus 5 % for the arm's errors),
-        // so the range then bounds the range now within that.
-        const double moved = 1.05 * (odometer_ - it->second.odometer) + 0.1;
-        const double lo = std::max(l.range_lo, it->second.lo - moved);
-        const double hi = std::min(l.range_hi, it->second.hi + moved);
-        if (lo <= hi) {
-          l.range_lo = lo;
-          l.range_hi = hi;
-        }
-      }
-      it->second = RangeBound{l.range_lo, l.range_hi, odometer_};
-    }
+    guard_.fuse(v, odometer_);
     return v;
   }
   // A clearance-keeping move towards `bearing` by the latest look's guard; nullopt: none is safe.
   std::optional<Vector2d> safe(const Viewframe& /*now*/, double bearing, double length,
                                std::optional<LandmarkId> ignore) {
-    std::optional<Vector2d> m = safe_move(guard_, bearing, length, config_.clearance, ignore);
+    std::optional<Vector2d> m = safe_move(guard_.guard(), bearing, length, config_.clearance, ignore);
     // Blocked by range bounds too loose to tell: look again from here; each look's range error is
     // drawn afresh, so the fused bounds close in on the truth.
     for (int again = 0; !m && again < config_.extra_looks; ++again) {
       look();
-      m = safe_move(guard_, bearing, length, config_.clearance, ignore);
+      m = safe_move(guard_.guard(), bearing, length, config_.clearance, ignore);
     }
     if (m && std::abs(wrap_angle(std::atan2(m->y(), m->x()) - bearing)) > 1e-6) ++report_.detours;
     return m;
@@ -171,14 +157,8 @@ class Journey {
   std::optional<Vector2d> last_path_move_;
   Vector2d position_ = Vector2d::Zero();  // dead reckoning of the commanded moves
   double odometer_ = 0;                   // mm commanded so far
-  struct RangeBound {
-    double lo = 0;
-    double hi = 0;
-    double odometer = 0;  // when they held
-  };
-  std::map<LandmarkId, RangeBound> bounds_;
-  Viewframe guard_;
-  std::optional<Vector2d> smoothed_;  // the running mean of the heading steps' directions
+  RangeGuard guard_;                      // the looks' landmarks, their ranges narrowed by the looks before
+  std::optional<Vector2d> smoothed_;      // the running mean of the heading steps' directions
 };
 
 NavigationReport Journey::run() {
@@ -200,7 +180,7 @@ NavigationReport Journey::run() {
     std::optional<std::size_t> nearest;
     for (std::size_t n = 0; n < n_nodes; ++n) {
       if (shared_landmarks(now, memory_.nodes()[n].view).size() < 2) continue;
-      to[n] = headings_.from_view(config_.fused_ranges ? guard_ : now, now_cache, n, config_.frames);
+      to[n] = headings_.from_view(config_.fused_ranges ? guard_.guard() : now, now_cache, n, config_.frames);
       if (!to[n]) continue;
       if (!nearest || to[n]->distance < to[*nearest]->distance) nearest = n;
       // A node the robot already stands on is no step: links to it would stall the plan there.
@@ -321,10 +301,11 @@ NavigationReport Journey::approach() {
       if (k > 0 && k % 12 == 0) look();  // none clear: tighten the bounds from here, try again
       const double length = k % 12 < 6 ? config_.parallax_mm : config_.parallax_mm / 2;
       const Vector2d m = length * unit_of(g->bearing + kTurns[k % 6] * std::numbers::pi / 180);
-      const bool clear = std::all_of(guard_.landmarks.begin(), guard_.landmarks.end(), [&](const ViewedLandmark& l) {
-        const double gap = track_gap(l, m);
-        return l.id == goal_ || gap >= config_.clearance.required() || gap >= current_gap(l);
-      });
+      const bool clear =
+          std::all_of(guard_.guard().landmarks.begin(), guard_.guard().landmarks.end(), [&](const ViewedLandmark& l) {
+            const double gap = track_gap(l, m);
+            return l.id == goal_ || gap >= config_.clearance.required() || gap >= current_gap(l);
+          });
       if (!clear) continue;
       if (!move(m)) return std::nullopt;
       ++report_.approach_steps;

@@ -14,6 +14,7 @@
 #include "nav/qualnav/metric/viewframe_heading.hpp"
 #include "nav/qualnav/navigator/motion.hpp"
 #include "nav/qualnav/navigator/orientation_heading.hpp"
+#include "nav/qualnav/navigator/range_guard.hpp"
 #include "nav/qualnav/topology/region_planner.hpp"
 
 namespace neopipe::nav::qualnav {
@@ -112,32 +113,18 @@ class RegionPhase {
     report_.regions.ending = region_phase_ending_name(e);
     return e;
   }
-  // A look, and its guard: the same landmarks with range bounds fused over the looks so far (as the
-  // viewframe level keeps them): the clearance needs bounds tighter than one look's intervals.
+  // A look, and its guard (range_guard.hpp, as the viewframe level keeps it).
   Viewframe look() {
     Viewframe v = eye_.look();
-    guard_ = v;
-    for (ViewedLandmark& l : guard_.landmarks) {
-      auto [it, fresh] = bounds_.try_emplace(l.id, FusedBound{l.range_lo, l.range_hi, odometer_});
-      if (!fresh) {
-        const double moved = 1.05 * (odometer_ - it->second.odometer) + 0.1;
-        const double lo = std::max(l.range_lo, it->second.lo - moved);
-        const double hi = std::min(l.range_hi, it->second.hi + moved);
-        if (lo <= hi) {
-          l.range_lo = lo;
-          l.range_hi = hi;
-        }
-      }
-      it->second = FusedBound{l.range_lo, l.range_hi, odometer_};
-    }
+    guard_.fuse(v, odometer_);
     return v;
   }
   // One path step towards `bearing` keeping the clearance; false: none keeps it, or the arm refused.
   bool step(double bearing, double length) {
-    std::optional<Vector2d> m = safe_move(guard_, bearing, length, config_.clearance);
+    std::optional<Vector2d> m = safe_move(guard_.guard(), bearing, length, config_.clearance);
     for (int again = 0; !m && again < config_.extra_looks; ++again) {
       look();
-      m = safe_move(guard_, bearing, length, config_.clearance);
+      m = safe_move(guard_.guard(), bearing, length, config_.clearance);
     }
     if (!m) return false;
     if (std::abs(wrap_angle(std::atan2(m->y(), m->x()) - bearing)) > 1e-6) ++report_.detours;
@@ -178,13 +165,7 @@ class RegionPhase {
   Vector2d position_ = Vector2d::Zero();
   std::optional<Vector2d> last_move_;
   double odometer_ = 0;
-  struct FusedBound {
-    double lo = 0;
-    double hi = 0;
-    double odometer = 0;
-  };
-  std::map<LandmarkId, FusedBound> bounds_;
-  Viewframe guard_;
+  RangeGuard guard_;  // the looks' landmarks, their ranges narrowed by the looks before
 };
 
 RegionPhaseEnding RegionPhase::run() {
