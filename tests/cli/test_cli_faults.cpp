@@ -34,8 +34,10 @@ class RunFaults : public ScratchDirTest {
   }
 };
 
-// The rows of a CSV blob table: every line complete and of 11 numbers, frames counted from 0 with
-// none missing. Returns the number of frames with a blob, or -1 if the table is broken.
+// The rows of a CSV blob table: every line complete and of 11 numbers, frame numbers never going
+// back. Returns how far into the video the table reaches (the last frame's number + 1), or -1 if the
+// table is broken. Frames may be missing: a paced run drops the frames that find the pipeline full,
+// and a loaded machine (CI runs two suites at once) drops some.
 std::int64_t whole_frames(const std::string& table) {
   if (table.empty() || table.back() != '\n') return -1;
   std::string header;
@@ -43,7 +45,7 @@ std::int64_t whole_frames(const std::string& table) {
   for (const auto& row : csv_numbers(table, &header)) {
     if (row.size() != 11) return -1;
     const auto frame = static_cast<std::int64_t>(row[0]);
-    if (frame < last || frame > last + 1) return -1;  // the video has blobs in every frame
+    if (frame < last) return -1;
     last = frame;
   }
   return header.rfind("frame,blob,area", 0) == 0 ? last + 1 : -1;
