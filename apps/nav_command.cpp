@@ -46,6 +46,7 @@ rig::NavRequest nav_request(const NavArgs& a) {
   r.sigma_rot = a.sigma_rot;
   r.seed = a.seed;
   r.no_recovery = a.no_recovery;
+  r.no_slide_goals = a.no_slide_goals;
   r.navigator = a.navigator;
   r.descriptions = a.descriptions;
   r.min_reliability = a.min_reliability;
@@ -319,6 +320,9 @@ CLI::App* add_nav_command(CLI::App& app, NavArgs& a) {
   cmd->add_option("--trials", a.trials, "Run N journeys between random reachable pairs and print the outcome table");
   cmd->add_flag("--no-recovery", a.no_recovery,
                 "Navigator ignores the map's recovery rules and never goes back to try another candidate");
+  cmd->add_flag("--no-slide-goals", a.no_slide_goals,
+                "The map does not say where each slide's goal enters (\"Trajp:97@85/-3~8/12\"), as the paper's maps: "
+                "the navigator takes the first newcomer");
   cmd->add_option("--min-reliability", a.min_reliability,
                   "Refuse routes whose forecast reliability is below P, after trying the most reliable route (exit 3; "
                   "--trials counts refusals apart from failures)")

@@ -29,6 +29,7 @@ struct NavArgs {
   std::optional<std::int64_t> trials;
   std::optional<std::int64_t> as_trial;
   bool no_recovery = false;
+  bool no_slide_goals = false;
   std::string navigator = "tracking";     ///< tracking | paper
   std::string descriptions = "extended";  ///< paper | extended
   double min_reliability = 0;             ///< refuse routes forecast below this

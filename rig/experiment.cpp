@@ -40,6 +40,8 @@ ExperimentSettings derive_settings(const ExperimentConfig& c, double survey_sigm
       3 * std::sqrt(2.0) * survey_sigma + kNavigatorBorderError + nav::navigator::NavigatorConfig{}.adjust_tolerance;
   s.map.border_tolerance = border_band;
   s.map.extended_descriptions = c.extended_descriptions;
+  s.map.slide_goals = c.slide_goals;
+  s.navigator.slide_goals = c.slide_goals;
   s.map.errors.translation_per_mm = c.arm.sigma_move;
   s.map.errors.rotation_per_mm = c.arm.sigma_rot * std::numbers::pi / 180;
   // The map-maker rates its steps with what this navigator recovers from (nothing without recovery).

@@ -22,6 +22,7 @@ struct ExperimentConfig {
   bool recovery = true;                      ///< the navigator applies the map's recovery rules
   bool track_heading = true;                 ///< navigator "tracking" (true) or "paper" (false)
   bool extended_descriptions = true;         ///< the map's descriptions: "extended" (with Far, Near) or "paper"
+  bool slide_goals = true;                   ///< the map says where each slide's goal enters (SlideGoal)
   double min_reliability = 0;                ///< routes forecast below this are refused
   sim::Realism realism = sim::Realism::rig;  ///< of the onboard camera (the survey has its own)
   std::uint64_t seed = 1;                    ///< arm errors and camera noise (journey i: trial_seed(seed, i))

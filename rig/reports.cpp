@@ -269,6 +269,7 @@ NavSetup nav_setup(const NavRequest& a) {
   config.window = a.window;
   config.arm = {a.sigma_move, a.sigma_rot};
   config.recovery = !a.no_recovery;
+  config.slide_goals = !a.no_slide_goals;
   config.track_heading = a.navigator == "tracking";
   config.extended_descriptions = a.descriptions == "extended";
   config.min_reliability = a.min_reliability;
@@ -388,6 +389,7 @@ TrialsReport trials_report(const NavRequest& a, const NavSetup& s, std::int64_t 
                        {"sigma_rot", a.sigma_rot},
                        {"window", a.window},
                        {"recovery", !a.no_recovery},
+                       {"slide_goals", !a.no_slide_goals},
                        {"navigator", a.navigator},
                        {"descriptions", a.descriptions},
                        {"seed", a.seed}};

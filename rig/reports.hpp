@@ -77,6 +77,7 @@ struct NavRequest {
   double sigma_rot = 0.002;
   std::uint64_t seed = 1;
   bool no_recovery = false;
+  bool no_slide_goals = false;
   std::string navigator = "tracking";     ///< tracking | paper
   std::string descriptions = "extended";  ///< paper | extended
   double min_reliability = 0;

@@ -1,6 +1,7 @@
 #include "nav/common/custom_map.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -53,6 +54,13 @@ bool quadrants_allow(const QuadrantPattern& pattern, int qoc) {
   return occupied <= qoc && qoc <= occupied + unsure;
 }
 
+namespace {
+std::string format_slide_goal(const SlideGoal& g) {
+  const auto mm = [](double v) { return std::to_string(std::lround(v)); };
+  return '@' + mm(g.along) + '/' + mm(g.cross) + '~' + mm(g.along_tolerance) + '/' + mm(g.cross_tolerance);
+}
+}  // namespace
+
 std::string format_entry(const MapEntry& entry) {
   std::string out = "(";
   out += description_name(entry.seek);
@@ -60,6 +68,9 @@ std::string format_entry(const MapEntry& entry) {
   if (entry.slide && entry.slide_limit) {
     out += ':';
     out += std::to_string(std::lround(*entry.slide_limit));
+  }
+  if (entry.slide && entry.slide_goal) {
+    out += format_slide_goal(*entry.slide_goal);
   }
   for (const RecoveryRule& r : entry.rules) {
     out += ", (";
@@ -123,11 +134,14 @@ class Reader {
         continue;
       }
       const std::string w = word();
-      const std::string kind = w.substr(0, w.find(':'));
+      const std::string kind = w.substr(0, w.find_first_of(":@"));
       if (kind == "Trajp" || kind == "Trajn") {
         if (e.slide || !e.rules.empty()) fail("a recovery rule or a corner", w);
         e.slide = kind == "Trajp" ? Direction::positive : Direction::negative;
-        if (kind.size() < w.size()) e.slide_limit = slide_limit(w.substr(kind.size() + 1));
+        const std::size_t at = w.find('@');
+        const std::string bound = w.substr(0, at);
+        if (kind.size() < bound.size()) e.slide_limit = slide_limit(bound.substr(kind.size() + 1));
+        if (at != std::string::npos) e.slide_goal = slide_goal(w.substr(at + 1));
         continue;
       }
       if (w == "-") break;
@@ -189,6 +203,22 @@ class Reader {
       o = unsure ? Occupancy::unsure : Occupancy::occupied;
       if (peek(',')) return pattern;
     }
+  }
+
+  // "85/-3~8/12": along/cross~along_tolerance/cross_tolerance, whole mm, tolerances > 0.
+  SlideGoal slide_goal(const std::string& text) const {
+    std::array<int, 4> v{};
+    const char* p = text.data();
+    const char* const end = text.data() + text.size();
+    constexpr std::array<char, 4> kAfter{'/', '~', '/', '\0'};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const auto [next, ec] = std::from_chars(p, end, v[k]);
+      const bool last = k + 1 == v.size();
+      if (ec != std::errc{} || (last ? next != end : next == end || *next != kAfter[k]) || (k >= 2 && v[k] <= 0))
+        fail("a slide goal along/cross~along-tolerance/cross-tolerance in whole mm (tolerances > 0)", text);
+      p = last ? next : next + 1;
+    }
+    return {static_cast<double>(v[0]), static_cast<double>(v[1]), static_cast<double>(v[2]), static_cast<double>(v[3])};
   }
 
   double slide_limit(const std::string& text) const {

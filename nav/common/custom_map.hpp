@@ -4,9 +4,11 @@
 // the reference->landmark direction (Trajp) or back (Trajn) until a new object enters and take that
 // one; verify it by its QOC and apply the recovery rules E; adjust it to corner M ('-' at the goal).
 // Text form, as in the paper: ((*, SW), (Isol, SE), (Isol, Trajp, (2, NW, Isol), (1, -), -)), with
-// three extensions: a slide's bound ("Trajp:120", mm), a QOC to measure only in doubt ("(1, ?)"),
-// and which quadrants the verified QOC counts ("(2 NE SW ~NW, -)", see QuadrantPattern).
+// four extensions: a slide's bound ("Trajp:120", mm), where its goal should enter ("@85/-3~8/12",
+// SlideGoal), a QOC to measure only in doubt ("(1, ?)"), and which quadrants the verified QOC counts
+// ("(2 NE SW ~NW, -)", see QuadrantPattern).
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -57,6 +59,25 @@ struct RecoveryRule {
   friend bool operator==(const RecoveryRule&, const RecoveryRule&) = default;
 };
 
+/// Where a slide's goal lies from the reference, in the track's axes: mm along the slide and across
+/// it (positive to the left of the direction of travel), and how far from there the navigator may
+/// find it given the map-maker's errors. A newcomer entering elsewhere is not the goal: one before
+/// it is passed by, one after it says the goal went by beside the window. Whole mm, as written.
+struct SlideGoal {
+  double along = 0;
+  double cross = 0;
+  double along_tolerance = 0;
+  double cross_tolerance = 0;
+  friend bool operator==(const SlideGoal&, const SlideGoal&) = default;
+
+  /// Whether an object at `along`, `cross` (track axes, from the reference) may be the goal.
+  bool admits(double at_along, double at_cross) const {
+    return std::abs(at_along - along) <= along_tolerance && std::abs(at_cross - cross) <= cross_tolerance;
+  }
+  /// Whether the goal must have entered before an object at `at_along` did.
+  bool passed(double at_along) const { return at_along > along + along_tolerance; }
+};
+
 struct MapEntry {
   Description seek = Description::Isol;
   std::optional<Direction> slide;
@@ -65,6 +86,8 @@ struct MapEntry {
   /// mm: how far the slide may go before the navigator concludes its landmark will not enter
   /// (written "Trajp:120"): the map-maker's slide plus what its errors allow. None: no bound.
   std::optional<double> slide_limit;
+  /// Where the slide's goal should enter (written "Trajp:120@85/-3~8/12"). None: any newcomer may be.
+  std::optional<SlideGoal> slide_goal;
   friend bool operator==(const MapEntry&, const MapEntry&) = default;
 
   /// The QOC that verifies this entry's landmark, when the map gives one.

@@ -10,6 +10,35 @@ namespace {
 
 constexpr double kSlideSlack = 1.2;
 
+// How many standard deviations of the map-maker's errors a slide's goal may lie from where it is
+// expected and still be taken for it: wide enough that the true goal is almost never refused (two
+// axes, 6e-5 each), narrow enough to refuse an object a window away.
+constexpr double kSlideGoalSds = 4;
+// The smallest tolerance: the navigator's own measurement and the adjust's residual, mm.
+constexpr double kSlideGoalFloor = 3;
+
+// Where the trajectory's goal lies from its reference in the track's axes, and the tolerances of
+// that place: the goal's and the reference's survey errors (sigma per axis each), the direction's
+// (the reference's and the direction landmark's errors across a baseline b turn a goal L away by
+// sqrt(2) sigma L / b, the arm's heading error by its turn times L), and the arm's over the slide.
+SlideGoal slide_goal(const WorldViews& views, const Trajectory& t, const NavigatorErrors& errors) {
+  const Eigen::Vector2d ref = views.position(t.from.object);
+  const Eigen::Vector2d u = t.heading(views);
+  const Eigen::Vector2d n(-u.y(), u.x());
+  const Eigen::Vector2d rel = views.position(t.to) - ref;
+  const double baseline = (views.position(t.via) - ref).norm();
+  const double s2 = errors.sigma * errors.sigma;
+  const double arm = errors.translation_per_mm * t.slide;
+  const double turn = errors.rotation_per_mm * t.slide * rel.norm();
+  // The direction's error turns the goal's place about the reference: across the track for a goal
+  // ahead, along it for one far to the side, so both axes get it (counted across only, correct goals
+  // 37 mm to the side of their track were refused on a 1.5 mm survey).
+  const double turned2 = 2 * s2 * rel.squaredNorm() / (baseline * baseline) + turn * turn;
+  const double sd = std::sqrt(2 * s2 + arm * arm + turned2);
+  const double tolerance = std::ceil(std::max(kSlideGoalSds * sd, kSlideGoalFloor));
+  return {std::round(rel.dot(u)), std::round(rel.dot(n)), tolerance, tolerance};
+}
+
 }  // namespace
 
 double Route::ratio() const {
@@ -76,7 +105,8 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
   route.unreliability = path->unreliability;
   route.landmark_distance = path->landmark_distance;
   route.start_corner = all[step_of_edge[path->edges.front()]].from.corner;
-  route.custom_map.entries.push_back({Description::Any, std::nullopt, {}, route.start_corner, std::nullopt});
+  route.custom_map.entries.push_back(
+      {Description::Any, std::nullopt, {}, route.start_corner, std::nullopt, std::nullopt});
   for (std::size_t k = 0; k < path->edges.size(); ++k) {
     const std::uint32_t e = path->edges[k];
     const bool last = k + 1 == path->edges.size();
@@ -85,14 +115,16 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     rs.distance = graph.edges()[e].distance;
     const Step& s = rs.step;
     std::vector<std::uint32_t> confusable;
+    std::optional<Trajectory> trajectory;
     if (s.slide) {
-      const auto t = trajectory_from(views_, s.from, s.seek, *s.slide);
-      confusable = confusable_on_trajectory(views_, *t, options_.errors);
+      trajectory = trajectory_from(views_, s.from, s.seek, *s.slide);
+      confusable = confusable_on_trajectory(views_, *trajectory, options_.errors);
     } else {
       confusable = confusable_in_view(views_, s.from, s.landmark, s.seek);
     }
     rs.check = check_step(views_, s.landmark, confusable, options_.border_tolerance);
-    rs.entry = {s.seek, s.slide, rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust), std::nullopt};
+    rs.entry = {s.seek,       s.slide,     rs.check.rules, last ? std::nullopt : std::optional<Corner>(s.adjust),
+                std::nullopt, std::nullopt};
     // The goal is always looked around when its QOC is sure, even when some mistake could show the
     // same: arriving at the wrong object is otherwise an unaware failure, and one that shows another
     // QOC sends the navigator back for another candidate.
@@ -107,7 +139,10 @@ Route MapMaker::plan(std::uint32_t start, std::uint32_t goal, CostCriterion crit
     }
     // The navigator stops a slide its landmark has not ended by here: a window beyond the slide,
     // room for what errors move and for the next newcomers when the first proves wrong.
-    if (s.slide) rs.entry.slide_limit = std::ceil(kSlideSlack * s.arrival_travel + views_.window().side);
+    if (s.slide) {
+      rs.entry.slide_limit = std::ceil(kSlideSlack * s.arrival_travel + views_.window().side);
+      if (options_.slide_goals) rs.entry.slide_goal = slide_goal(views_, *trajectory, options_.errors);
+    }
     route.custom_map.entries.push_back(rs.entry);
     route.forecast *= rs.step.forecast;
     route.steps.push_back(std::move(rs));

@@ -29,6 +29,9 @@ struct MapMakerOptions {
   /// Describe landmarks as Far and Near too (the objects in view farthest from and nearest to the
   /// reference) beside the paper's Obvious and Isol (docs/navigation.md, "Descriptions").
   bool extended_descriptions = true;
+  /// Say where each slide's goal should enter (SlideGoal), so that the navigator passes by an object
+  /// entering before it and knows the goal went by when one enters after it.
+  bool slide_goals = true;
 };
 
 struct RouteStep {

@@ -39,34 +39,39 @@ std::optional<Failure> take_start(Pilot& pilot, const MapEntry& entry, detail::H
 
 // A slide's k-th candidate: the first newcomer on the map's track, then (when the navigator has an
 // offset) the first newcomer with the window moved beside the track on one side and the other, by
-// the offset and then by twice it, then the later newcomers on the track.
+// the offset and then by twice it, then the track of the description's next landmark (a direction
+// taken from the wrong one misses the goal by more than any offset), then the later newcomers on the
+// track.
 struct SlideTry {
   int skip = 0;
   double offset = 0;
+  int direction_candidate = 0;  ///< which landmark the description selects gives the direction
 };
 SlideTry slide_try(int candidate, double offset) {
-  if (offset <= 0 || candidate == 0) return {candidate, 0.0};
+  if (offset <= 0 || candidate == 0) return {candidate, 0.0, 0};
   if (candidate <= 4) {
     const int times = (candidate + 1) / 2;  // 1, 1, 2, 2: one offset away, then two
-    return {0, (candidate % 2 == 1 ? offset : -offset) * times};
+    return {0, (candidate % 2 == 1 ? offset : -offset) * times, 0};
   }
-  return {candidate - 4, 0.0};
+  if (candidate == 5) return {0, 0.0, 1};
+  return {candidate - 5, 0.0, 0};
 }
 
 std::optional<Failure> follow_entry(Pilot& pilot, const MapEntry& entry, int candidate, detail::Hold& held,
                                     EntryRecord& record) {
   detail::SeekCandidate sought{held.landmark, false};
-  // A slide's candidates are what enters after the first; its direction's landmark is the seek's choice.
-  if (auto failure = detail::seek(pilot, held, entry.seek, entry.slide ? 0 : candidate, sought)) return failure;
+  // A slide's candidates are its tries (slide_try); a landmark's, the description's next choices.
+  const SlideTry t = slide_try(candidate, pilot.config().slide_offset);
+  if (auto failure = detail::seek(pilot, held, entry.seek, entry.slide ? t.direction_candidate : candidate, sought))
+    return failure;
   Eigen::Vector2d landmark = sought.landmark;
   bool doubtful = sought.doubtful;
   if (entry.slide) {
     Eigen::Vector2d found = landmark;
-    const SlideTry t = slide_try(candidate, pilot.config().slide_offset);
-    if (auto failure = detail::slide(pilot, held, landmark, *entry.slide, entry.slide_limit, t.skip, t.offset, found))
-      return failure;
+    if (auto failure = detail::slide(pilot, held, landmark, entry, t.skip, t.offset, found)) return failure;
     landmark = found;
-    doubtful = doubtful || candidate > 0;
+    // A later try's newcomer is a guess, unless it entered where the map says the goal does.
+    doubtful = entry.slide_goal && pilot.config().slide_goals ? false : doubtful || candidate > 0;
   }
   if (auto failure = detail::verify(pilot, entry, doubtful, landmark, record)) return failure;
   if (doubtful && !entry.adjust && !record.verified) {

@@ -120,14 +120,16 @@ struct SeekCandidate {
 std::optional<Failure> seek(Pilot& pilot, const Hold& hold, Description description, int alternative,
                             SeekCandidate& found);
 
-/// Slides the window along the held landmark -> `via` (positive) or back until an object that was
-/// not in view enters; `found` is where that new object is seen. With `alternative` k > 0 it goes on
-/// past the first k newcomers and takes the next. With an `offset` (mm, positive to the left of the
+/// Slides the window along the held landmark -> `via` (positive) or back, as `entry` says, until an
+/// object that was not in view enters; `found` is where that new object is seen. With the entry's
+/// SlideGoal, only an object entering where the goal should counts: one before it is passed by, one
+/// after it ends the slide with a Failure (wrong_candidate: the goal went by beside the window). With `alternative` k >
+/// 0 it goes on past the first k newcomers and takes the next. With an `offset` (mm, positive to the left of the
 /// direction of travel) the window first moves that far across the track: a neighbouring placement,
-/// for a goal that passed just beside the window. Failure after `limit` (the map's bound), at most
+/// for a goal that passed just beside the window. Failure after the map's bound, at most
 /// config.max_slide.
-std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             std::optional<double> limit, int alternative, double offset, Eigen::Vector2d& found);
+std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, const MapEntry& entry,
+                             int alternative, double offset, Eigen::Vector2d& found);
 
 /// Looks around the landmark seen at `landmark` (holds it at each corner in turn) and counts the
 /// occupied quadrants. Returns the hold it ends in (the last corner visited).

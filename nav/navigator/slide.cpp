@@ -6,7 +6,9 @@
 // cap, before or as it enters: the navigator predicts each cap's entry along the slide and stops
 // where the first one enters. Everything in view at the start is tracked by its predicted place and
 // never counts as entering. Entries are judged in the exact window (the reference exactly at its
-// corner, as the map-maker placed it), which moves with the real one.
+// corner, as the map-maker placed it), which moves with the real one. When the map says where the
+// goal lies from the reference (SlideGoal), a newcomer is placed from the reference by the moves made
+// since: one short of that place is passed by, one beyond it ends the slide (the goal went by).
 
 #include <fmt/format.h>
 
@@ -70,10 +72,11 @@ std::vector<Eigen::Vector2d> newcomers(const std::vector<Eigen::Vector2d>& seen,
 
 }  // namespace
 
-std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, Direction direction,
-                             std::optional<double> limit, int alternative, double offset, Eigen::Vector2d& found) {
+std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector2d& via, const MapEntry& entry,
+                             int alternative, double offset, Eigen::Vector2d& found) {
   const NavigatorConfig& config = pilot.config();
-  const double max_slide = std::min(config.max_slide, limit.value_or(config.max_slide));
+  const Direction direction = entry.slide.value_or(Direction::positive);
+  const double max_slide = std::min(config.max_slide, entry.slide_limit.value_or(config.max_slide));
   const double side = config.window.side;
   const Eigen::Vector2d line = via - hold.landmark;
   if (line.norm() == 0) return Failure{Ending::lost, "the trajectory's two landmarks coincide"};
@@ -107,6 +110,30 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
   double slid = 0;
   double last_step = 0;
   int skip = alternative;
+  const double heading0 = pilot.heading();
+  // Where a newcomer seen at `p` lies from the reference, along the track and across it (to the
+  // left), in the axes the slide began with (the window may have turned since).
+  const auto place = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
+    const Eigen::Vector2d rel = Eigen::Rotation2Dd(pilot.heading() - heading0) * (p - reference);
+    return {rel.dot(u), rel.x() * -u.y() + rel.y() * u.x()};
+  };
+  // What to make of it: the goal, an object entering before it (passed by, as known), or one
+  // entering after it, which says the goal went by beside the window.
+  enum class Verdict : std::uint8_t { goal, before, after };
+  const auto judge = [&](const Eigen::Vector2d& p) {
+    if (!entry.slide_goal || !config.slide_goals) return Verdict::goal;
+    const Eigen::Vector2d at = place(p);
+    if (entry.slide_goal->admits(at.x(), at.y())) return Verdict::goal;
+    return entry.slide_goal->passed(at.x()) ? Verdict::after : Verdict::before;
+  };
+  const auto went_by = [&](const Eigen::Vector2d& p) {
+    return Failure{Ending::lost,
+                   fmt::format("an object entered {:.0f} mm along the trajectory ({}), beyond its goal ({:.0f} +- "
+                               "{:.0f} mm): the goal went by beside the window",
+                               place(p).x(), trajectory_name(direction), entry.slide_goal->along,
+                               entry.slide_goal->along_tolerance),
+                   true};
+  };
   for (;;) {
     // The exact window's coordinates (see held_view): it moves with the real one, axis-aligned.
     const Eigen::Rotation2Dd unturn(pilot.heading());
@@ -129,13 +156,16 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
         goal_entered = when->lo;
       }
     }
-    if (goal && skip == 0) {
-      found = *goal;
-      return std::nullopt;
-    }
-    if (goal) {  // a newcomer taken before, and found wrong: it is known now, and the slide goes on
+    if (goal) {
+      const Verdict verdict = judge(*goal);
+      if (verdict == Verdict::after) return went_by(*goal);
+      if (verdict == Verdict::goal && skip == 0) {
+        found = *goal;
+        return std::nullopt;
+      }
+      // Passed by, or a newcomer taken before and found wrong: it is known now, and the slide goes on.
       known.push_back(*goal);
-      --skip;
+      if (verdict == Verdict::goal) --skip;
       continue;
     }
     const double step = std::min(config.slide_step, max_slide - slid);
@@ -166,19 +196,25 @@ std::optional<Failure> slide(Pilot& pilot, const Hold& hold, const Eigen::Vector
     if (next) {
       const std::vector<Eigen::Vector2d> seen = everything_seen(pilot.sighting());
       if (const auto i = nearest(seen, *next - d, gate)) {
-        if (skip == 0) {
+        const Verdict verdict = judge(seen[*i]);
+        if (verdict == Verdict::after) return went_by(seen[*i]);
+        if (verdict == Verdict::goal && skip == 0) {
           found = seen[*i];
           return std::nullopt;
         }
         known.push_back(seen[*i]);
-        --skip;
+        if (verdict == Verdict::goal) --skip;
       }
     }
     std::erase_if(known,
                   [&](const Eigen::Vector2d& p) { return (p.array() < -side).any() || (p.array() > 2 * side).any(); });
   }
-  return Failure{Ending::lost, fmt::format("slid {:.0f} mm along the trajectory ({}) without meeting an object",
-                                           max_slide, trajectory_name(direction))};
+  // With the goal's place known, nothing where it should be means it went by beside the window (or
+  // the direction was wrong): the entry's next try, not the landmark before it, is in doubt.
+  return Failure{Ending::lost,
+                 fmt::format("slid {:.0f} mm along the trajectory ({}) without meeting an object", max_slide,
+                             trajectory_name(direction)),
+                 entry.slide_goal.has_value() && config.slide_goals};
 }
 
 }  // namespace neopipe::nav::navigator::detail

@@ -49,6 +49,10 @@ TEST(CustomMap, RandomMapsRoundTrip) {
       if (rng() % 3 == 0) {
         e.slide = rng() % 2 ? Direction::positive : Direction::negative;
         if (rng() % 2) e.slide_limit = 1 + static_cast<double>(rng() % 500);
+        if (rng() % 2) {
+          const auto mm = [&](int lo, int span) { return static_cast<double>(lo + static_cast<int>(rng() % span)); };
+          e.slide_goal = SlideGoal{mm(-300, 600), mm(-60, 120), mm(1, 40), mm(1, 80)};
+        }
       }
       const int rules = static_cast<int>(rng() % 4);
       for (int r = 0; r < rules; ++r) {
@@ -88,6 +92,29 @@ TEST(CustomMap, ReadsASlidesBoundAndAQocToMeasureOnlyInDoubt) {
   EXPECT_THROW(parse_custom_map("((Obvious, Trajp:0, SE))"), CustomMapError);
   EXPECT_THROW(parse_custom_map("((Obvious, Trajp:1.5, SE))"), CustomMapError);
   EXPECT_THROW(parse_custom_map("((Obvious, Trajp:, SE))"), CustomMapError);
+}
+
+TEST(CustomMap, ReadsWhereASlidesGoalShouldEnter) {
+  const CustomMap m = parse_custom_map("((*, SW), (Near, Trajp:78@73/-9~19/21, SW), (Isol, Trajn@5/24~13/13, -))");
+  ASSERT_EQ(m.entries.size(), 3U);
+  EXPECT_EQ(m.entries[1].slide_limit, 78.0);
+  EXPECT_EQ(m.entries[1].slide_goal, (SlideGoal{73, -9, 19, 21}));
+  EXPECT_FALSE(m.entries[2].slide_limit.has_value());
+  EXPECT_EQ(m.entries[2].slide_goal, (SlideGoal{5, 24, 13, 13}));
+  EXPECT_EQ(format_custom_map(m), "((*, SW), (Near, Trajp:78@73/-9~19/21, SW), (Isol, Trajn@5/24~13/13, -))");
+  // The goal's place admits what lies within both tolerances; beyond it along the track, the goal
+  // must have gone by.
+  const SlideGoal& g = *m.entries[1].slide_goal;
+  EXPECT_TRUE(g.admits(73 + 19, -9 - 21));
+  EXPECT_FALSE(g.admits(73 + 20, -9));
+  EXPECT_FALSE(g.admits(73, -9 + 22));
+  EXPECT_FALSE(g.passed(73 + 19));
+  EXPECT_TRUE(g.passed(73 + 20));
+  for (const char* bad :
+       {"((Isol, Trajp:78@73/-9~19, SW))", "((Isol, Trajp:78@73/-9~0/4, SW))", "((Isol, Trajp:78@73/-9~19/4x, SW))",
+        "((Isol, Trajp:78@, SW))", "((Isol, Trajp:78@73.5/-9~19/4, SW))", "((Isol, Trajp:@73/-9~19/4, SW))"}) {
+    EXPECT_THROW(parse_custom_map(bad), CustomMapError) << bad;
+  }
 }
 
 TEST(CustomMap, ReadsTheQuadrantsOfAVerifiedQoc) {
@@ -132,6 +159,10 @@ TEST(CustomMap, MalformedTextNamesWhereAndWhat) {
             "found 'N'");
   EXPECT_EQ(message("((Isol, (1 NE, SW, Isol), SW))"),
             "custom map: at character 18: expected - or ? after the quadrants of the verified QOC, found 'SW'");
+  EXPECT_EQ(
+      message("((Isol, Trajp:70@60/-4~8, SW))"),
+      "custom map: at character 25: expected a slide goal along/cross~along-tolerance/cross-tolerance in whole mm "
+      "(tolerances > 0), found '60/-4~8'");
   EXPECT_EQ(message("((Isol, (2, -), Trajp, SW))"),
             "custom map: at character 22: expected a recovery rule or a corner, found 'Trajp'");
 }

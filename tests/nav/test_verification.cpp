@@ -119,7 +119,7 @@ TEST(Verification, RecoveryRulesAlwaysLeadBackWhenCorrectable) {
     for (const std::uint32_t id : confusable) ASSERT_NE(views.qoc(id), check.qoc);
     if (check.kind != Verifiability::correctable) return;
     ++correctable;
-    MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW, std::nullopt};
+    MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW, std::nullopt, std::nullopt};
     for (std::uint32_t at : confusable) {
       int hops = 0;
       while (at != landmark) {
@@ -211,7 +211,7 @@ TEST(Verification, WithABorderToleranceNoRuleNamesAQocTheLandmarkMayShow) {
       }
     }
     // Every QOC a mistake may show has its rule.
-    const MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW, std::nullopt};
+    const MapEntry entry{Description::Isol, std::nullopt, check.rules, Corner::SW, std::nullopt, std::nullopt};
     for (const std::uint32_t id : confusable) {
       const QocRange r = views.qoc_range(id, kTolerance);
       for (int q = r.low; q <= r.high; ++q) ASSERT_NE(entry.recovery_for(q), nullptr);

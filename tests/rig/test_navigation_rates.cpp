@@ -74,9 +74,11 @@ TEST(NavigationRates, SparseWorldWithAOneMillimetreSurvey) {
   expect_level_and_calibrated_forecast(trials_at(1.0, 1000), 0.995);
 }
 
-// Published: 95.2% of 2,000, the paper's survey error; the level 95% (the bound at 94.1%).
+// Published: 97.6% of 2,000 (issue 17, fifth session: slides that know where their goal enters), the
+// paper's survey error; the level 97%, issue 17's target (the bound at 96.8%; a fall to 95.5% puts it
+// at 94.5%, under the level less 2).
 TEST(NavigationRates, SparseWorldWithAOneAndAHalfMillimetreSurvey) {
-  expect_level_and_calibrated_forecast(trials_at(1.5, 2000), 0.95);
+  expect_level_and_calibrated_forecast(trials_at(1.5, 2000), 0.97);
 }
 
 // The dense world (400 marbles, `neopipe sim world --objects 400 --seed 1`), where the paper's

@@ -286,3 +286,73 @@ TEST(QuadrantPattern, AMistakeWithTheGoalsQocButOtherQuadrantsIsFoundOut) {
 
 }  // namespace
 }  // namespace neopipe::nav::navigator
+
+namespace neopipe::nav::navigator {
+namespace {
+
+// The map says where a slide's goal enters (SlideGoal): a marble entering well before that place is
+// passed by, where the paper's navigator takes the first newcomer whatever it is.
+TEST(SlideGoal, AMarbleEnteringBeforeTheGoalsPlaceIsPassedBy) {
+  sim::World world;
+  world.size = {400, 300};
+  // S held at SW sees V due East (the direction); I enters the band first (90 mm along, 40 across),
+  // G later (160 along, 20 across).
+  constexpr std::size_t kS = 0, kI = 2, kG = 3;
+  world.objects = {{100, 100}, {130, 100}, {190, 140}, {260, 120}};
+  for (const bool goal_place : {true, false}) {
+    Rig rig(world);
+    const CustomMap map = parse_custom_map(goal_place ? "((*, SW), (Obvious, Trajp:300@160/20~8/8, -))"
+                                                      : "((*, SW), (Obvious, Trajp:300, -))");
+    const test_rig::Journey j = test_rig::travel(rig, map, kS, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    EXPECT_EQ(j.final_object, goal_place ? kG : kI);
+    EXPECT_EQ(j.report.backtracks, 0);
+  }
+}
+
+// A marble entering beyond the goal's place says the goal went by beside the window: the navigator
+// tries the slide again beside the track, where the goal enters, without any QOC to tell it. With
+// the check off (NavigatorConfig::slide_goals) it takes the far marble and never knows.
+TEST(SlideGoal, AMarbleEnteringBeyondTheGoalsPlaceSendsTheSlideBesideTheTrack) {
+  sim::World world;
+  world.size = {400, 300};
+  // As in SlideRetry: G lies 3 mm beyond the band swept East (120 mm along, 50.5 across), X far East
+  // inside it (200 along, 20 across).
+  constexpr std::size_t kS = 0, kG = 2, kX = 4;
+  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:250@120/50~8/8, -))");
+  for (const bool check : {true, false}) {
+    Rig rig(world);
+    rig.config().slide_offset = 4;
+    rig.config().slide_goals = check;
+    const test_rig::Journey j = test_rig::travel(rig, map, kS, Corner::SW);
+    ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+    if (!check) {
+      EXPECT_EQ(j.final_object, kX);
+      continue;
+    }
+    EXPECT_EQ(j.final_object, kG);
+    EXPECT_EQ(j.report.backtracks, 1);
+    EXPECT_EQ(j.report.entries.back().candidate, 1);
+  }
+}
+
+// Nothing enters where the goal should, and nothing after it either, before the map's bound: the
+// goal went by as surely, and the slide is tried again beside the track rather than the landmark
+// before it doubted.
+TEST(SlideGoal, NothingWhereTheGoalShouldBeIsTriedAgainBesideTheTrack) {
+  sim::World world;
+  world.size = {400, 300};
+  constexpr std::size_t kS = 0, kG = 2;
+  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}};
+  const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:160@120/50~8/8, -))");
+  Rig rig(world);
+  rig.config().slide_offset = 4;
+  const test_rig::Journey j = test_rig::travel(rig, map, kS, Corner::SW);
+  ASSERT_EQ(j.report.ending, Ending::arrived) << j.report.reason;
+  EXPECT_EQ(j.final_object, kG);
+  EXPECT_EQ(j.report.entries.back().candidate, 1);
+}
+
+}  // namespace
+}  // namespace neopipe::nav::navigator
