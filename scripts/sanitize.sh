@@ -56,7 +56,10 @@ if [[ "$what" == thread || "$what" == all ]]; then
   configure build-tsan thread -DTBB_DIR="$PWD/build-tsan/onetbb/lib/cmake/TBB"
   cmake --build build-tsan -j "$jobs" --target neopipe_pipeline_tests neopipe_navigator_tests neopipe_rig_tests
   # The binaries find the instrumented libtbb through their run path; say so if they do not.
-  if ! ldd build-tsan/tests/neopipe_pipeline_tests | grep -q "build-tsan/onetbb/lib/libtbb"; then
+  # ldd's output is read whole first: `grep -q` stops at the first match, and under pipefail the
+  # SIGPIPE ldd then gets would fail the check (it did on CI once the binaries linked more libraries).
+  linked="$(ldd build-tsan/tests/neopipe_pipeline_tests)"
+  if [[ "$linked" != *"build-tsan/onetbb/lib/libtbb"* ]]; then
     echo "scripts/sanitize.sh: build-tsan does not link the TSan build of oneTBB" >&2
     exit 1
   fi
