@@ -201,16 +201,23 @@ TEST(ViewMargin, AnObviousLandmarkBeyondTheFarEdgeIsFoundByLookingThere) {
   }
 }
 
+// S held at SW sees V due East (the direction); the band swept East spans y 97.5..147.5. G lies
+// 3 mm beyond it (no cap in view; 120 mm along the track, 50.5 across), Y beside G gives it QOC 1,
+// X far East inside the band (QOC 0; 200 along, 20 across).
+constexpr std::size_t kBesideS = 0, kBesideG = 2, kBesideX = 4;
+sim::World goal_beside_the_band_world() {
+  sim::World world;
+  world.size = {400, 300};
+  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
+  return world;
+}
+
 // A slide whose goal the survey put inside the swept band passes just beside it, and a farther
 // marble enters instead; its QOC proves it wrong. Tried again with the window moved beside the
 // track, the slide meets the goal.
 TEST(SlideRetry, ASlideThatPassesBesideItsGoalIsTriedAgainBesideTheTrack) {
-  sim::World world;
-  world.size = {400, 300};
-  // S held at SW sees V due East (the direction); the band swept East spans y 97.5..147.5. G lies
-  // 3 mm beyond it (no cap in view), Y beside G gives it QOC 1, X far East inside the band (QOC 0).
-  constexpr std::size_t kS = 0, kG = 2, kX = 4;
-  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
+  const sim::World world = goal_beside_the_band_world();
+  constexpr std::size_t kS = kBesideS, kG = kBesideG, kX = kBesideX;
   const mapmaker::Workspace workspace = test_rig::workspace_of(world);  // the views point into it
   const mapmaker::WorldViews views(workspace, WindowModel::with_side(50));
   ASSERT_EQ(views.qoc(kG), 1);
@@ -314,12 +321,8 @@ TEST(SlideGoal, AMarbleEnteringBeforeTheGoalsPlaceIsPassedBy) {
 // tries the slide again beside the track, where the goal enters, without any QOC to tell it. With
 // the check off (NavigatorConfig::slide_goals) it takes the far marble and never knows.
 TEST(SlideGoal, AMarbleEnteringBeyondTheGoalsPlaceSendsTheSlideBesideTheTrack) {
-  sim::World world;
-  world.size = {400, 300};
-  // As in SlideRetry: G lies 3 mm beyond the band swept East (120 mm along, 50.5 across), X far East
-  // inside it (200 along, 20 across).
-  constexpr std::size_t kS = 0, kG = 2, kX = 4;
-  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}, {300, 120}};
+  const sim::World world = goal_beside_the_band_world();
+  constexpr std::size_t kS = kBesideS, kG = kBesideG, kX = kBesideX;
   const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:250@120/50~8/8, -))");
   for (const bool check : {true, false}) {
     Rig rig(world);
@@ -341,10 +344,9 @@ TEST(SlideGoal, AMarbleEnteringBeyondTheGoalsPlaceSendsTheSlideBesideTheTrack) {
 // goal went by as surely, and the slide is tried again beside the track rather than the landmark
 // before it doubted.
 TEST(SlideGoal, NothingWhereTheGoalShouldBeIsTriedAgainBesideTheTrack) {
-  sim::World world;
-  world.size = {400, 300};
-  constexpr std::size_t kS = 0, kG = 2;
-  world.objects = {{100, 100}, {130, 100}, {220, 150.5}, {240, 170}};
+  sim::World world = goal_beside_the_band_world();
+  world.objects.pop_back();  // no X: nothing enters after the goal's place either
+  constexpr std::size_t kS = kBesideS, kG = kBesideG;
   const CustomMap map = parse_custom_map("((*, SW), (Obvious, Trajp:160@120/50~8/8, -))");
   Rig rig(world);
   rig.config().slide_offset = 4;
